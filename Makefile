@@ -1,0 +1,36 @@
+# Thin wrapper: the two set-up commands of the README, plus bench.
+# `make demo` and `make test` install missing Debian packages first (tools/install_deps.sh).
+JOBS ?= $(shell nproc)
+PYTHON := /usr/bin/python3
+GRAINFLOW := build/release/grainflow
+
+.PHONY: all deps release debug demo test test-debug bench clean
+
+all: release
+
+deps:
+	./tools/install_deps.sh
+
+release: deps
+	cmake --preset release
+	cmake --build --preset release -j $(JOBS)
+
+debug: deps
+	cmake --preset debug
+	cmake --build --preset debug -j $(JOBS)
+
+demo: release
+	$(GRAINFLOW) run cases/demo/vibrated_bed.toml -o runs/demo
+	$(GRAINFLOW) plot runs/demo
+	@echo "demo: figures in runs/demo/ (profiles.png, timeseries.png)"
+
+# Release build: every test. Debug build (AddressSanitizer + UBSan): the unit tests.
+test: release debug
+	ctest --preset release -j $(JOBS)
+	ctest --preset debug -L unit -j $(JOBS)
+
+bench: release
+	./bench/run_bench.sh
+
+clean:
+	rm -rf build

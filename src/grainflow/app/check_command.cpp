@@ -1,0 +1,49 @@
+#include "grainflow/app/check_command.hpp"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "grainflow/dem/derived_quantities.hpp"
+
+namespace grainflow::app {
+
+void print_check(const CaseConfig& c, std::ostream& out) {
+  const dem::DerivedQuantities d = dem::derive(c);
+  const auto& ref = c.species[d.reference_species];
+  out << fmt::format("case {}: valid\n", c.path);
+  out << fmt::format("  engine                      dem, {} moving + {} fixed particles\n", d.moving_particles, d.frozen_particles);
+  for (const auto& s : c.species)
+    out << fmt::format("  species {:<18}  d = {:.6g} m, rho = {:.6g} kg/m^3, mass = {:.6g} kg, count = {}{}\n", s.name,
+                       s.diameter, s.density, s.mass(), s.count, s.frozen ? " (frozen)" : "");
+  out << fmt::format("  contact model               {}\n", d.model);
+  if (d.model == "walton_braun") {
+    out << fmt::format("  K1 (loading)                {:.6g} N/m\n", d.k1);
+    out << fmt::format("  K2 = K1/e^2 (unloading)     {:.6g} N/m\n", d.k2);
+    out << fmt::format("  e = sqrt(K1/K2)             {:.6g}\n", d.restitution);
+    out << fmt::format("  K0 = ratk K1 (tangential)   {:.6g} N/m\n", d.tangential_stiffness);
+  } else {
+    out << fmt::format("  kn, kt                      {:.6g}, {:.6g} N/m\n", d.k1, d.tangential_stiffness);
+    out << fmt::format("  gamma_n, gamma_t            {:.6g}, {:.6g} 1/s\n", c.contact.gamma_n, c.contact.gamma_t);
+    out << fmt::format("  e (binary, closed form)     {:.6g}\n", d.restitution);
+  }
+  out << fmt::format("  contact duration (binary)   {:.6g} s  (reference species '{}', m = {:.6g} kg)\n", d.contact_duration,
+                     ref.name, d.reference_mass);
+  out << fmt::format("  time step                   {:.6g} s  ({}; n = {:.4g} in eq. 2-5-4, {:.3g} steps per contact)\n",
+                     d.time_step, d.time_step_from_case ? "from run.time_step" : "eq. 2-5-4", d.collision_steps,
+                     d.steps_per_contact);
+  out << fmt::format("  steps to run                {:.6g}\n", std::ceil(c.run.duration / d.time_step));
+  out << fmt::format("  neighbor skin               {:.6g} m\n", d.skin);
+  if (c.drive.enabled) {
+    out << fmt::format("  floor peak speed            {:.6g} m/s\n", d.floor_peak_speed);
+    out << fmt::format("  expected max floor overlap  {:.4g} m = {:.4g} d  (sphere hitting the floor at its peak speed)\n",
+                       d.expected_floor_overlap, d.expected_floor_overlap / ref.diameter);
+    out << fmt::format("  shaking acceleration Gamma  {:.6g}  (a omega^2 / g along gravity)\n", d.shaking_acceleration);
+    out << fmt::format("  boundary fluctuation V_b    {:.6g}  (eq. 4-1-3)\n", d.boundary_fluctuation_velocity);
+  }
+  if (d.hertz_k1)
+    out << fmt::format("  Hertz-equivalent K1         {:.6g} N/m  (eqs. 2-5-5..2-5-9, E = {:.6g} Pa, nu = {:.3g}; K1 / K1_H = {:.3g})\n",
+                       *d.hertz_k1, ref.youngs_modulus, ref.poisson_ratio, d.k1 / *d.hertz_k1);
+  out << fmt::format("  mass hold-up m_t            {:.6g}  (eq. 4-1-3)\n", d.mass_holdup);
+}
+
+}  // namespace grainflow::app

@@ -1,0 +1,246 @@
+#include "grainflow/app/dem_run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <unistd.h>
+
+#include "grainflow/core/error.hpp"
+#include "grainflow/core/version.hpp"
+#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/io/atomic_file.hpp"
+#include "grainflow/io/json_writer.hpp"
+#include "grainflow/io/vtu_writer.hpp"
+#include "grainflow/observe/global_sample.hpp"
+#include "grainflow/observe/zone_profile.hpp"
+
+namespace grainflow::app {
+namespace {
+
+struct TimeseriesRow {
+  double time;
+  observe::GlobalSample global;
+  double floor_position, floor_velocity, max_overlap_ratio;
+  long contacts, wall_contacts, rebuilds;
+};
+
+void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>& rows) {
+  io::write_atomically(path, [&](std::ostream& out) {
+    out << "# units: time s, kinetic_energy J, rotational_energy J, granular_temperature m^2/s^2, "
+           "mass_center_height m, floor_position m, floor_velocity m/s, max_overlap_over_diameter 1\n";
+    out << "time,kinetic_energy,rotational_energy,granular_temperature,mass_center_height,floor_position,"
+           "floor_velocity,max_overlap_over_diameter,contacts,wall_contacts,neighbor_rebuilds\n";
+    for (const auto& r : rows)
+      out << r.time << ',' << r.global.kinetic_energy << ',' << r.global.rotational_energy << ','
+          << r.global.granular_temperature << ',' << r.global.mass_center_height << ',' << r.floor_position << ','
+          << r.floor_velocity << ',' << r.max_overlap_ratio << ',' << r.contacts << ',' << r.wall_contacts << ','
+          << r.rebuilds << '\n';
+  });
+}
+
+void write_profiles(const std::string& path, const observe::ZoneProfile& profile, double diameter, double g) {
+  io::write_atomically(path, [&](std::ostream& out) {
+    out << "# zone profiles along the gravity axis, long-term averages over " << profile.samples()
+        << " samples; temperature = about the instantaneous zone mean (Lan), temperature_time_mean = about the"
+           " long-term zone mean (Campbell)\n";
+    out << "# units: position m, Y 1 (position / d), velocities m/s, temperatures m^2/s^2, W 1 (sqrt(T/(g d))), "
+           "kinetic_energy_density J/m^3\n";
+    out << "zone,position_lo,position_hi,position,Y,solids_fraction,mean_velocity_x,mean_velocity_y,mean_velocity_z,"
+           "temperature_x,temperature_y,temperature_z,temperature,temperature_time_mean,W,kinetic_energy_density\n";
+    const auto zones = profile.averages();
+    for (std::size_t z = 0; z < zones.size(); ++z) {
+      const auto& a = zones[z];
+      const double mid = 0.5 * (a.lo + a.hi);
+      const double t = (a.temperature_lan.x + a.temperature_lan.y + a.temperature_lan.z) / 3.0;
+      const double tm = (a.temperature_time_mean.x + a.temperature_time_mean.y + a.temperature_time_mean.z) / 3.0;
+      out << z << ',' << a.lo << ',' << a.hi << ',' << mid << ',' << mid / diameter << ',' << a.solids_fraction << ','
+          << a.mean_velocity.x << ',' << a.mean_velocity.y << ',' << a.mean_velocity.z << ',' << a.temperature_lan.x
+          << ',' << a.temperature_lan.y << ',' << a.temperature_lan.z << ',' << t << ',' << tm << ','
+          << (g > 0.0 ? std::sqrt(t / (g * diameter)) : 0.0) << ',' << a.kinetic_energy_density << '\n';
+    }
+  });
+}
+
+void write_final_state(const std::string& path, const ParticleStore& p, const std::vector<SpeciesConfig>& species) {
+  io::write_atomically(path, [&](std::ostream& out) {
+    out.precision(17);  // exact doubles: the state can be read back
+    out << "# units: diameter m, x y z m, vx vy vz m/s, wx wy wz rad/s\n";
+    out << "id,species,diameter,x,y,z,vx,vy,vz,wx,wy,wz\n";
+    std::vector<std::size_t> by_id(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = i;
+    for (std::size_t i : by_id) {
+      const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
+      out << p.id[i] << ',' << species[p.species[i]].name << ',' << 2.0 * p.target_radius[i] << ',' << x.x << ','
+          << x.y << ',' << x.z << ',' << v.x << ',' << v.y << ',' << v.z << ',' << w.x << ',' << w.y << ',' << w.z
+          << '\n';
+    }
+  });
+}
+
+class Progress {
+ public:
+  Progress(bool enabled, double duration) : enabled_(enabled), duration_(duration), start_(clock::now()), last_(start_) {}
+  void update(double time) {
+    if (!enabled_) return;
+    const auto now = clock::now();
+    if (now - last_ < std::chrono::milliseconds(500)) return;
+    last_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    const double rate = time / elapsed;
+    const double eta = rate > 0.0 ? (duration_ - time) / rate : 0.0;
+    std::fprintf(stderr, "\r  t = %.4g / %.4g s   %.3g s/s   ETA %.0f s   ", time, duration_, rate, eta);
+  }
+  void finish() {
+    if (enabled_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  bool enabled_;
+  double duration_;
+  clock::time_point start_, last_;
+};
+
+}  // namespace
+
+int run_dem(const CaseConfig& c, const RunOptions& options) {
+  namespace fs = std::filesystem;
+  const dem::DerivedQuantities derived = dem::derive(c);
+  dem::DemEngineVariant engine = dem::make_engine(c, dem::build_dem_state(c), options.threads);
+
+  fs::create_directories(options.output_directory);
+  const std::string dir = options.output_directory;
+  std::optional<io::PvdSeries> snapshots;
+  if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
+
+  const int axis = derived.gravity_axis;
+  double zone_thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : derived.reference_diameter;
+  double area = 1.0;
+  for (int a = 0; a < 3; ++a)
+    if (a != axis) area *= c.domain.length(a);
+  observe::ZoneProfile profile(axis, c.domain.lo[axis], c.domain.hi[axis], zone_thickness, area);
+
+  const double dt = derived.time_step;
+  const long total_steps = static_cast<long>(std::llround(c.run.duration / dt));
+  const long output_every = std::max(1L, static_cast<long>(std::llround(c.output.interval / dt)));
+  const double profile_interval = c.output.profile_interval > 0.0 ? c.output.profile_interval : c.output.interval / 10.0;
+  const long profile_every = std::max(1L, static_cast<long>(std::llround(profile_interval / dt)));
+  const long snapshot_every =
+      c.output.snapshot_interval > 0.0 ? std::max(1L, static_cast<long>(std::llround(c.output.snapshot_interval / dt))) : 0;
+  const long average_from = static_cast<long>(std::ceil(c.output.average_start / dt - 1e-9));
+
+  std::vector<TimeseriesRow> rows;
+  std::vector<std::string> errors, warnings;
+  Progress progress(!options.quiet && ::isatty(2), c.run.duration);
+  const auto wall_start = std::chrono::steady_clock::now();
+  auto last_flush = wall_start;
+  double max_overlap_seen = 0.0;
+  int exit_status = 0;
+
+  auto record = [&](auto& e) {
+    auto& st = e.state();
+    TimeseriesRow row{};
+    row.time = st.time;
+    row.global = observe::sample_global(st.particles, axis);
+    row.floor_position = 0.0;
+    row.floor_velocity = 0.0;
+    for (const auto& wall : st.walls)
+      if (c.drive.enabled && wall.face == c.drive.face) {
+        row.floor_position = wall.position;
+        row.floor_velocity = wall.velocity[wall.axis];
+      }
+    row.max_overlap_ratio = e.statistics().max_overlap_ratio;
+    row.contacts = e.statistics().contacts;
+    row.wall_contacts = e.statistics().wall_contacts;
+    row.rebuilds = e.statistics().rebuilds;
+    max_overlap_seen = std::max(max_overlap_seen, row.max_overlap_ratio);
+    e.statistics().max_overlap_ratio = 0.0;
+    rows.push_back(row);
+    if (c.run.halt_overlap > 0.0 && row.max_overlap_ratio > c.run.halt_overlap) {
+      std::ostringstream message;
+      message << "maximum overlap / diameter " << row.max_overlap_ratio << " exceeded run.halt_overlap = "
+              << c.run.halt_overlap << " before t = " << st.time << " s; increase the stiffness (k1 = " << derived.k1
+              << " N/m) or lower the impact speeds";
+      throw RunError(message.str());
+    }
+  };
+
+  try {
+    std::visit(
+        [&](auto& e) {
+          record(e);
+          if (snapshots) snapshots->add(e.state().particles, e.state().time);
+          for (long step = 1; step <= total_steps; ++step) {
+            e.step();
+            if (step >= average_from && step % profile_every == 0) profile.sample(e.state().particles);
+            if (step % output_every == 0) {
+              record(e);
+              progress.update(e.state().time);
+              const auto now = std::chrono::steady_clock::now();
+              if (now - last_flush > std::chrono::seconds(30)) {
+                write_timeseries(dir + "/timeseries.csv", rows);
+                last_flush = now;
+              }
+            }
+            if (snapshot_every && step % snapshot_every == 0) snapshots->add(e.state().particles, e.state().time);
+          }
+        },
+        engine);
+  } catch (const RunError& error) {
+    errors.push_back(error.what());
+    exit_status = 1;
+  }
+  progress.finish();
+  const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+
+  std::visit(
+      [&](auto& e) {
+        const auto& st = e.state();
+        long moving = 0;
+        for (std::size_t i = 0; i < st.particles.size(); ++i) moving += st.particles.motion[i] == Motion::free;
+        const auto global = observe::sample_global(st.particles, axis);
+        write_timeseries(dir + "/timeseries.csv", rows);
+        write_profiles(dir + "/profiles.csv", profile, derived.reference_diameter, derived.gravity_magnitude);
+        write_final_state(dir + "/final_state.csv", st.particles, st.species);
+
+        double mean_temperature = 0.0;
+        long counted = 0;
+        for (const auto& r : rows)
+          if (r.time >= c.output.average_start) {
+            mean_temperature += r.global.granular_temperature;
+            ++counted;
+          }
+        io::JsonObject summary;
+        summary.string("engine", "dem");
+        summary.integer("dimension", 3);
+        summary.integer("particles", moving);
+        summary.integer("fixed_particles", static_cast<long long>(st.particles.size()) - moving);
+        summary.string("case", c.path);
+        summary.string("version", kVersion);
+        summary.string("contact_model", c.contact.model);
+        summary.number("simulated_time", st.time);
+        summary.number("wall_seconds", wall_seconds);
+        summary.integer("steps", st.step);
+        summary.number("time_step", st.time_step);
+        summary.integer("threads", options.threads);
+        summary.number("particle_steps_per_second", wall_seconds > 0 ? moving * double(st.step) / wall_seconds : 0.0);
+        summary.number("max_overlap_over_diameter", max_overlap_seen);
+        summary.number("kinetic_energy", global.kinetic_energy);
+        summary.number("rotational_energy", global.rotational_energy);
+        summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
+        summary.integer("profile_samples", profile.samples());
+        summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
+        summary.strings("errors", errors);
+        summary.strings("warnings", warnings);
+        io::write_atomically(dir + "/summary.json", [&](std::ostream& out) { summary.write(out); });
+      },
+      engine);
+  for (const auto& e : errors) std::cerr << "grainflow: run failed: " << e << "\n";
+  return exit_status;
+}
+
+}  // namespace grainflow::app

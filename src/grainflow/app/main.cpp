@@ -1,0 +1,112 @@
+// The `grainflow` command line (INTERFACE.md): run, check, plot, cases, --version.
+#include <CLI/CLI.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <unistd.h>
+
+#include "grainflow/app/check_command.hpp"
+#include "grainflow/app/dem_run.hpp"
+#include "grainflow/core/case_loader.hpp"
+#include "grainflow/core/error.hpp"
+#include "grainflow/core/version.hpp"
+
+namespace fs = std::filesystem;
+using namespace grainflow;
+
+namespace {
+
+// The installation's root (where cases/ and tools/ live): the executable sits in build/<preset>/.
+fs::path project_root() {
+  std::error_code error;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    for (fs::path dir = exe.parent_path(); !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
+      if (fs::exists(dir / "cases") && fs::exists(dir / "tools")) return dir;
+  }
+  return fs::current_path();
+}
+
+int list_cases() {
+  const fs::path root = project_root() / "cases";
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::recursive_directory_iterator(root))
+    if (entry.path().extension() == ".toml") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  for (const auto& file : files) {
+    std::ifstream in(file);
+    std::string first;
+    std::getline(in, first);
+    if (first.rfind("#", 0) == 0) first = first.substr(first.find_first_not_of("# "));
+    std::cout << fs::relative(file, root.parent_path()).string() << "\n    " << first << "\n";
+  }
+  return 0;
+}
+
+int plot(const std::string& directory) {
+  const fs::path script = project_root() / "tools" / "plot_run.py";
+  const std::string command = "/usr/bin/python3 '" + script.string() + "' '" + directory + "'";
+  const int status = std::system(command.c_str());
+  return status == 0 ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"grainflow: particle simulation of granular flows (DEM and event-driven)"};
+  app.set_version_flag("--version", std::string("grainflow ") + kVersion);
+  app.require_subcommand(1);
+
+  std::string case_path, output_dir, plot_dir;
+  std::vector<std::string> overrides;
+  int threads = 1;
+  bool quiet = false;
+
+  auto* run = app.add_subcommand("run", "run a case and write its output folder");
+  run->add_option("case", case_path, "case file (TOML)")->required();
+  run->add_option("-o,--output", output_dir, "output folder (default: runs/<case name>)");
+  run->add_option("--set", overrides, "override a case key: --set contact.k1=2e6")->type_name("KEY=VALUE");
+  run->add_option("--threads", threads, "OpenMP threads (default 1)")->check(CLI::Range(1, 1024));
+  run->add_flag("--quiet", quiet, "no progress line");
+
+  auto* check = app.add_subcommand("check", "validate a case and print its derived quantities; runs nothing");
+  check->add_option("case", case_path, "case file (TOML)")->required();
+  check->add_option("--set", overrides, "override a case key")->type_name("KEY=VALUE");
+
+  auto* plot_cmd = app.add_subcommand("plot", "PNG figures of a finished run");
+  plot_cmd->add_option("outdir", plot_dir, "output folder of a run")->required();
+
+  app.add_subcommand("cases", "list the bundled cases");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  try {
+    if (app.got_subcommand("cases")) return list_cases();
+    if (app.got_subcommand("plot")) return plot(plot_dir);
+    const CaseConfig c = load_case(case_path, overrides);
+    if (app.got_subcommand("check")) {
+      app::print_check(c, std::cout);
+      return 0;
+    }
+    app::RunOptions options;
+    options.output_directory = output_dir.empty() ? (fs::path("runs") / fs::path(case_path).stem()).string() : output_dir;
+    options.threads = threads;
+    options.quiet = quiet;
+    return app::run_dem(c, options);
+  } catch (const InputError& e) {
+    std::cerr << "grainflow: invalid input: " << e.what() << "\n";
+    return 2;
+  } catch (const RunError& e) {
+    std::cerr << "grainflow: run failed: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "grainflow: error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,130 @@
+// Typed, validated contents of a case file (TOML). Every field is SI unless its comment says
+// otherwise; defaults here are the documented defaults of docs/CASE_FILES.md.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "grainflow/core/vec3.hpp"
+
+namespace grainflow {
+
+enum class FaceKind { periodic, wall, bumpy, open };
+
+// Faces are numbered axis*2 + side: 0 xlo, 1 xhi, 2 ylo, 3 yhi, 4 zlo, 5 zhi.
+inline constexpr std::array<const char*, 6> kFaceNames = {"xlo", "xhi", "ylo", "yhi", "zlo", "zhi"};
+inline constexpr int face_axis(int face) { return face / 2; }
+inline constexpr bool face_is_high(int face) { return face % 2 == 1; }
+
+struct EngineConfig {
+  std::string kind = "dem";
+  int dimension = 3;
+};
+
+struct DomainConfig {
+  Vec3 lo, hi;                       // m
+  std::array<FaceKind, 6> faces{};   // per face
+  bool periodic(int axis) const { return faces[axis * 2] == FaceKind::periodic; }
+  double length(int axis) const { return hi[axis] - lo[axis]; }
+};
+
+struct SpeciesConfig {
+  std::string name;
+  double diameter = 0.0;        // m
+  double density = 0.0;         // kg/m^3
+  std::int64_t count = 0;       // particles placed by [particles].init
+  bool frozen = false;          // fixed in place, felt by others (e.g. a rough chute base)
+  double youngs_modulus = 0.0;  // Pa, optional: for the Hertz-equivalent K1 (eqs. 2-5-5..2-5-9)
+  double poisson_ratio = -1.0;  // optional, with youngs_modulus
+  double mass() const;          // kg, one sphere
+};
+
+struct ParticlesConfig {
+  std::string init = "random";  // random | lattice | file
+  std::string file;             // with init = "file", resolved against the case's folder
+  double initial_temperature = 0.0;  // m^2/s^2
+  std::uint64_t seed = 1;
+  std::optional<Vec3> region_lo, region_hi;  // m, where random / lattice particles go
+  double expansion_time = 0.05;  // s, radius expansion of section 2.2 (init = random)
+  double lattice_spacing = 1.02; // in diameters of the largest species (init = lattice)
+};
+
+struct ContactConfig {
+  std::string model = "walton_braun";  // walton_braun | linear_dashpot
+  // walton_braun
+  double k1 = 0.0;           // N/m
+  double restitution = 0.9;  // e = sqrt(k1/k2)
+  double ratk = -1.0;        // K0/K1; < 0: Mindlin's 2(1-nu)/(2-nu) with nu of the species or 0.3
+  // linear_dashpot (LAMMPS gran/hooke/history)
+  double kn = 0.0;       // N/m
+  double kt = -1.0;      // N/m; < 0: 2/7 kn
+  double gamma_n = 0.0;  // 1/s
+  double gamma_t = -1.0; // 1/s; < 0: gamma_n / 2 (LAMMPS default)
+  double friction = 0.0; // mu between particles
+};
+
+struct WallConfig {
+  double restitution = -1.0;  // < 0: the particles' value
+  double friction = -1.0;     // < 0: the particles' value
+  double gamma_n = -1.0;      // linear_dashpot walls; < 0: the particles' value
+  Vec3 velocity;              // m/s, constant velocity of the wall (a drive adds to it)
+  // bumpy walls: fixed half-spheres centred on the wall plane (section 2.6.3)
+  double bump_diameter = 0.0;     // m; 0 = diameter of the first species
+  std::string lattice = "square"; // square | triangular
+  double spacing = 0.0;           // m, centre-to-centre; 0 = bump_diameter
+};
+
+struct DriveConfig {
+  bool enabled = false;
+  std::string preset;  // "" | rotary (eq. 4-1-1: equal amplitudes, phases 0, 2pi/3, 4pi/3)
+  int face = 2;        // ylo
+  Vec3 amplitude;      // m, displacement amplitude per axis
+  Vec3 frequency;      // Hz per axis
+  Vec3 phase;          // rad per axis
+  double start = 0.0;  // s, pouring time before shaking
+  double ramp = 1.0;   // s, linear amplitude ramp after start
+};
+
+struct RunConfig {
+  double duration = 0.0;       // s
+  double time_step = 0.0;      // s; 0 = eq. (2-5-4) with collision_steps
+  int collision_steps = 15;    // n of eq. (2-5-4)
+  double skin = -1.0;          // m, Verlet skin; < 0: 0.15 largest diameter
+  double halt_overlap = 0.0;   // stop when max overlap / d exceeds this (0 = never; seeds: 0.01)
+  int sort_every = 20;         // neighbor rebuilds between spatial re-sorts (0 = never)
+};
+
+struct OutputConfig {
+  double interval = 0.01;         // s between time-series rows
+  double snapshot_interval = 0.0; // s between VTU snapshots (0 = none)
+  double profile_interval = 0.0;  // s between profile samples (0 = interval / 10)
+  double average_start = 0.0;     // s, long-term averages start here
+  double zone_thickness = 0.0;    // m, profile zones along gravity (0 = mean diameter)
+};
+
+// One explicitly given particle (init = "file").
+struct InitialParticle {
+  std::string species;
+  Vec3 position, velocity, angular_velocity;  // m, m/s, rad/s
+  double diameter = 0.0;                      // m; 0 = the species' diameter
+};
+
+struct CaseConfig {
+  std::string path;  // the case file, as given
+  EngineConfig engine;
+  DomainConfig domain;
+  Vec3 gravity{0.0, -9.81, 0.0};
+  std::vector<SpeciesConfig> species;
+  ParticlesConfig particles;
+  ContactConfig contact;
+  std::array<WallConfig, 6> walls;
+  DriveConfig drive;
+  RunConfig run;
+  OutputConfig output;
+  std::vector<InitialParticle> initial_particles;  // read from particles.file
+};
+
+}  // namespace grainflow

@@ -1,0 +1,316 @@
+#include "grainflow/core/case_loader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "grainflow/core/case_validation.hpp"
+#include "grainflow/core/error.hpp"
+#include "grainflow/core/toml_reader.hpp"
+#include "grainflow/io/particle_csv.hpp"
+
+namespace grainflow {
+namespace {
+
+FaceKind parse_face_kind(TomlReader& reader, const std::string& key, const std::string& text) {
+  if (text == "periodic") return FaceKind::periodic;
+  if (text == "wall") return FaceKind::wall;
+  if (text == "bumpy") return FaceKind::bumpy;
+  if (text == "open") return FaceKind::open;
+  reader.fail(key, "unknown boundary '" + text + "' (valid: periodic, wall, bumpy, open)");
+}
+
+void read_boundaries(TomlReader& domain, DomainConfig& out) {
+  TomlReader boundary = domain.table("boundary");
+  static const char* axes[3] = {"x", "y", "z"};
+  for (int axis = 0; axis < 3; ++axis) {
+    const toml::node* node = boundary.raw(axes[axis]);
+    const std::string key = std::string("boundary.") + axes[axis];
+    FaceKind lo = FaceKind::periodic, hi = FaceKind::periodic;
+    if (!node) {
+      domain.fail(key, "is required (periodic, wall, bumpy or open)");
+    } else if (auto s = node->as_string()) {
+      lo = hi = parse_face_kind(domain, key, s->get());
+    } else if (auto a = node->as_array(); a && a->size() == 2 && a->get(0)->is_string() && a->get(1)->is_string()) {
+      lo = parse_face_kind(domain, key, a->get(0)->as_string()->get());
+      hi = parse_face_kind(domain, key, a->get(1)->as_string()->get());
+    } else {
+      domain.fail(key, "expected a string or [lo_face, hi_face]");
+    }
+    if ((lo == FaceKind::periodic) != (hi == FaceKind::periodic))
+      domain.fail(key, "periodic must apply to both faces of an axis");
+    out.faces[axis * 2] = lo;
+    out.faces[axis * 2 + 1] = hi;
+  }
+  boundary.reject_unknown_keys();
+}
+
+int face_index(TomlReader& reader, const std::string& key, const std::string& name) {
+  for (int f = 0; f < 6; ++f)
+    if (name == kFaceNames[f]) return f;
+  reader.fail(key, "unknown face '" + name + "' (valid: xlo, xhi, ylo, yhi, zlo, zhi)");
+}
+
+CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden) {
+  CaseConfig c;
+  c.path = file;
+  TomlReader top(file, &root, "", &overridden);
+
+  {
+    TomlReader r = top.table("engine");
+    c.engine.kind = r.string("kind", c.engine.kind);
+    c.engine.dimension = static_cast<int>(r.integer("dimension", c.engine.dimension));
+    if (c.engine.kind != "dem" && c.engine.kind != "edmd") r.fail("kind", "must be \"dem\" or \"edmd\"");
+    if (c.engine.dimension != 2 && c.engine.dimension != 3) r.fail("dimension", "must be 2 or 3");
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader r = top.table("domain");
+    if (!top.has("domain")) top.fail("domain", "is required");
+    c.domain.lo = r.required_vec3("lo");
+    c.domain.hi = r.required_vec3("hi");
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(c.domain.hi[axis] > c.domain.lo[axis])) r.fail("hi", "must exceed lo on every axis");
+    read_boundaries(r, c.domain);
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader r = top.table("gravity");
+    c.gravity = r.vec3("vector", c.gravity);
+    r.reject_unknown_keys();
+  }
+  {
+    auto entries = top.array_of_tables("species");
+    if (entries.empty()) top.fail("species", "at least one [[species]] table is required");
+    for (auto& r : entries) {
+      SpeciesConfig s;
+      s.name = r.string("name", "");
+      if (s.name.empty()) r.fail("name", "is required and must not be empty");
+      for (const auto& other : c.species)
+        if (other.name == s.name) r.fail("name", "species '" + s.name + "' is defined twice");
+      s.diameter = r.required_number("diameter");
+      if (!(s.diameter > 0.0)) r.fail("diameter", "must be positive");
+      s.density = r.required_number("density");
+      if (!(s.density > 0.0)) r.fail("density", "must be positive");
+      s.count = r.integer("count", 0);
+      if (s.count < 0) r.fail("count", "must not be negative");
+      s.frozen = r.boolean("frozen", false);
+      s.youngs_modulus = r.number("youngs_modulus", 0.0);
+      if (s.youngs_modulus < 0.0) r.fail("youngs_modulus", "must be positive");
+      s.poisson_ratio = r.number("poisson_ratio", -1.0);
+      if (r.has("poisson_ratio") && !(s.poisson_ratio >= 0.0 && s.poisson_ratio < 0.5))
+        r.fail("poisson_ratio", "must lie in [0, 0.5)");
+      if (s.youngs_modulus > 0.0 && s.poisson_ratio < 0.0) s.poisson_ratio = 0.3;
+      r.reject_unknown_keys();
+      c.species.push_back(s);
+    }
+  }
+  {
+    TomlReader r = top.table("particles");
+    auto& p = c.particles;
+    p.init = r.string("init", p.init);
+    if (p.init != "random" && p.init != "lattice" && p.init != "file")
+      r.fail("init", "must be \"random\", \"lattice\" or \"file\"");
+    p.file = r.string("file", "");
+    if (p.init == "file" && p.file.empty()) r.fail("file", "is required when init = \"file\"");
+    if (p.init != "file" && !p.file.empty()) r.fail("file", "is only used with init = \"file\"");
+    p.initial_temperature = r.number("initial_temperature", 0.0);
+    if (p.initial_temperature < 0.0) r.fail("initial_temperature", "must not be negative");
+    const std::int64_t seed = r.integer("seed", 1);
+    if (seed < 0) r.fail("seed", "must not be negative");
+    p.seed = static_cast<std::uint64_t>(seed);
+    if (r.has("region_lo")) p.region_lo = r.vec3("region_lo", {});
+    if (r.has("region_hi")) p.region_hi = r.vec3("region_hi", {});
+    p.expansion_time = r.number("expansion_time", p.expansion_time);
+    if (p.expansion_time < 0.0) r.fail("expansion_time", "must not be negative");
+    p.lattice_spacing = r.number("lattice_spacing", p.lattice_spacing);
+    if (!(p.lattice_spacing >= 1.0)) r.fail("lattice_spacing", "must be at least 1 (in diameters)");
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader r = top.table("contact");
+    auto& k = c.contact;
+    k.model = r.string("model", k.model);
+    if (k.model != "walton_braun" && k.model != "linear_dashpot")
+      r.fail("model", "unknown contact model '" + k.model + "' (valid: walton_braun, linear_dashpot)");
+    k.friction = r.number("friction", 0.0);
+    if (k.friction < 0.0) r.fail("friction", "must not be negative");
+    if (k.model == "walton_braun") {
+      k.k1 = r.required_number("k1");
+      if (!(k.k1 > 0.0)) r.fail("k1", "must be positive");
+      k.restitution = r.number("restitution", k.restitution);
+      if (!(k.restitution > 0.0 && k.restitution <= 1.0)) r.fail("restitution", "must lie in (0, 1]");
+      k.ratk = r.number("ratk", -1.0);
+      if (r.has("ratk") && !(k.ratk > 0.0)) r.fail("ratk", "must be positive");
+    } else {
+      k.kn = r.required_number("kn");
+      if (!(k.kn > 0.0)) r.fail("kn", "must be positive");
+      k.kt = r.number("kt", 2.0 / 7.0 * k.kn);
+      if (k.kt < 0.0) r.fail("kt", "must not be negative");
+      k.gamma_n = r.number("gamma_n", 0.0);
+      if (k.gamma_n < 0.0) r.fail("gamma_n", "must not be negative");
+      k.gamma_t = r.number("gamma_t", 0.5 * k.gamma_n);
+      if (k.gamma_t < 0.0) r.fail("gamma_t", "must not be negative");
+    }
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader walls = top.table("walls");
+    for (int f = 0; f < 6; ++f) {
+      if (!walls.has(kFaceNames[f])) continue;
+      TomlReader r = walls.table(kFaceNames[f]);
+      WallConfig& w = c.walls[f];
+      w.restitution = r.number("restitution", -1.0);
+      if (r.has("restitution") && !(w.restitution > 0.0 && w.restitution <= 1.0))
+        r.fail("restitution", "must lie in (0, 1]");
+      w.friction = r.number("friction", -1.0);
+      if (r.has("friction") && w.friction < 0.0) r.fail("friction", "must not be negative");
+      w.gamma_n = r.number("gamma_n", -1.0);
+      if (r.has("gamma_n") && w.gamma_n < 0.0) r.fail("gamma_n", "must not be negative");
+      w.velocity = r.vec3("velocity", {});
+      w.bump_diameter = r.number("bump_diameter", 0.0);
+      if (r.has("bump_diameter") && !(w.bump_diameter > 0.0)) r.fail("bump_diameter", "must be positive");
+      w.lattice = r.string("lattice", w.lattice);
+      if (w.lattice != "square" && w.lattice != "triangular") r.fail("lattice", "must be \"square\" or \"triangular\"");
+      w.spacing = r.number("spacing", 0.0);
+      if (r.has("spacing") && !(w.spacing > 0.0)) r.fail("spacing", "must be positive");
+      const FaceKind kind = c.domain.faces[f];
+      if (kind == FaceKind::periodic || kind == FaceKind::open)
+        walls.fail(kFaceNames[f], "face is not a wall (boundary is periodic or open)");
+      if (kind != FaceKind::bumpy)
+        for (const char* key : {"bump_diameter", "lattice", "spacing"})
+          if (r.has(key)) r.fail(key, "only applies to a bumpy face");
+      r.reject_unknown_keys();
+    }
+    walls.reject_unknown_keys();
+  }
+  if (top.has("drive")) {
+    TomlReader r = top.table("drive");
+    auto& d = c.drive;
+    d.enabled = true;
+    d.preset = r.string("preset", "");
+    if (!d.preset.empty() && d.preset != "rotary") r.fail("preset", "unknown preset (valid: rotary)");
+    d.face = face_index(r, "face", r.string("face", "ylo"));
+    d.amplitude = r.vec3("amplitude", {});
+    d.frequency = r.vec3("frequency", {});
+    d.phase = r.vec3("phase", {});
+    if (d.preset == "rotary") {
+      // eq. (4-1-1): one amplitude and frequency on all three axes, phases 0, 2pi/3, 4pi/3.
+      if (r.has("phase")) r.fail("phase", "is fixed by preset = \"rotary\"");
+      const double a = r.has("amplitude") ? d.amplitude.x : 0.0;
+      const double f = r.has("frequency") ? d.frequency.x : 0.0;
+      if (!(d.amplitude.x == d.amplitude.y && d.amplitude.y == d.amplitude.z))
+        r.fail("amplitude", "the rotary preset needs equal amplitudes on all axes");
+      if (!(d.frequency.x == d.frequency.y && d.frequency.y == d.frequency.z))
+        r.fail("frequency", "the rotary preset needs equal frequencies on all axes");
+      d.amplitude = {a, a, a};
+      d.frequency = {f, f, f};
+      d.phase = {0.0, 2.0 * M_PI / 3.0, 4.0 * M_PI / 3.0};
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      if (d.amplitude[axis] < 0.0) r.fail("amplitude", "must not be negative");
+      if (d.frequency[axis] < 0.0) r.fail("frequency", "must not be negative");
+      if (d.amplitude[axis] > 0.0 && d.frequency[axis] == 0.0)
+        r.fail("frequency", "an axis with an amplitude needs a positive frequency");
+    }
+    d.start = r.number("start", 0.0);
+    if (d.start < 0.0) r.fail("start", "must not be negative");
+    d.ramp = r.number("ramp", 1.0);
+    if (d.ramp < 0.0) r.fail("ramp", "must not be negative");
+    const FaceKind kind = c.domain.faces[d.face];
+    if (kind == FaceKind::periodic) r.fail("face", std::string("cannot drive a periodic face (") + kFaceNames[d.face] + ")");
+    if (kind == FaceKind::open) r.fail("face", std::string("cannot drive an open face (") + kFaceNames[d.face] + ")");
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader r = top.table("run");
+    auto& run = c.run;
+    run.duration = r.required_number("duration");
+    if (!(run.duration > 0.0)) r.fail("duration", "must be positive");
+    run.time_step = r.number("time_step", 0.0);
+    if (run.time_step < 0.0) r.fail("time_step", "must not be negative (0 = from eq. 2-5-4)");
+    run.collision_steps = static_cast<int>(r.integer("collision_steps", run.collision_steps));
+    if (run.collision_steps < 1) r.fail("collision_steps", "must be at least 1");
+    run.skin = r.number("skin", -1.0);
+    if (r.has("skin") && !(run.skin > 0.0)) r.fail("skin", "must be positive");
+    run.halt_overlap = r.number("halt_overlap", 0.0);
+    if (run.halt_overlap < 0.0) r.fail("halt_overlap", "must not be negative");
+    run.sort_every = static_cast<int>(r.integer("sort_every", run.sort_every));
+    if (run.sort_every < 0) r.fail("sort_every", "must not be negative");
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader r = top.table("output");
+    auto& o = c.output;
+    o.interval = r.number("interval", o.interval);
+    if (!(o.interval > 0.0)) r.fail("interval", "must be positive");
+    o.snapshot_interval = r.number("snapshot_interval", 0.0);
+    if (o.snapshot_interval < 0.0) r.fail("snapshot_interval", "must not be negative");
+    o.profile_interval = r.number("profile_interval", 0.0);
+    if (o.profile_interval < 0.0) r.fail("profile_interval", "must not be negative");
+    o.average_start = r.number("average_start", 0.0);
+    if (o.average_start < 0.0) r.fail("average_start", "must not be negative");
+    o.zone_thickness = r.number("zone_thickness", 0.0);
+    if (o.zone_thickness < 0.0) r.fail("zone_thickness", "must not be negative");
+    r.reject_unknown_keys();
+  }
+  top.reject_unknown_keys();
+  return c;
+}
+
+void read_initial_particles(CaseConfig& c, const std::filesystem::path& base_dir) {
+  std::filesystem::path file(c.particles.file);
+  if (file.is_relative()) file = base_dir / file;
+  c.particles.file = file.string();
+  if (!std::filesystem::exists(file))
+    throw InputError(c.path, "particles.file", "file '" + file.string() + "' does not exist");
+  c.initial_particles = io::read_particle_csv(file.string());
+  for (auto& species : c.species) {
+    if (species.count != 0)
+      throw InputError(c.path, "species.count", "species '" + species.name + "': counts come from particles.file with init = \"file\"");
+  }
+  for (const auto& p : c.initial_particles) {
+    auto it = std::find_if(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == p.species; });
+    if (it == c.species.end())
+      throw InputError(c.particles.file, "species", "particle of unknown species '" + p.species + "'");
+    ++it->count;
+  }
+}
+
+CaseConfig load_from_table(toml::table& root, const std::string& label, const std::vector<std::string>& overrides,
+                           const std::filesystem::path& base_dir) {
+  std::set<std::string> overridden;
+  for (const auto& assignment : overrides) overridden.insert(apply_override(root, assignment, label));
+  CaseConfig c = parse(root, label, overridden);
+  if (c.particles.init == "file") read_initial_particles(c, base_dir);
+  validate_case(c);
+  return c;
+}
+
+}  // namespace
+
+CaseConfig load_case_from_string(const std::string& text, const std::string& label,
+                                 const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(text, label);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
+    throw InputError(label, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
+  }
+  return load_from_table(root, label, overrides, std::filesystem::path(label).parent_path());
+}
+
+CaseConfig load_case(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot open the case file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return load_case_from_string(buffer.str(), path, overrides);
+}
+
+}  // namespace grainflow

@@ -1,0 +1,16 @@
+// Turns a case file plus --set overrides into a validated CaseConfig, or throws InputError
+// naming the file, the key and the reason. Nothing is written anywhere.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "grainflow/core/case_config.hpp"
+
+namespace grainflow {
+
+CaseConfig load_case(const std::string& path, const std::vector<std::string>& overrides = {});
+CaseConfig load_case_from_string(const std::string& text, const std::string& label,
+                                 const std::vector<std::string>& overrides = {});
+
+}  // namespace grainflow

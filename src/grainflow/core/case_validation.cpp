@@ -1,0 +1,126 @@
+#include "grainflow/core/case_validation.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "grainflow/core/error.hpp"
+#include "grainflow/dem/derived_quantities.hpp"
+
+namespace grainflow {
+
+double max_bump_spacing(const std::string& lattice, double bump_radius, double free_radius) {
+  const double factor = lattice == "triangular" ? std::sqrt(3.0) : std::sqrt(2.0);
+  return factor * (bump_radius + free_radius);
+}
+
+namespace {
+
+// Minimum steps per binary contact: below ~5 velocity Verlet misses the spring's turning point
+// badly (it goes unstable at dt = 2/omega, i.e. ~1.6 steps per contact).
+constexpr double kMinStepsPerContact = 5.0;
+// Random placement with radius expansion cannot reach dense packings; 0.5 leaves room to expand.
+constexpr double kMaxRandomSolidsFraction = 0.5;
+// Simple cubic lattice sites need the spacing of lattice_spacing diameters.
+
+void fail(const CaseConfig& c, const std::string& key, const std::string& reason) {
+  throw InputError(c.path, key, reason);
+}
+
+void validate_dem(const CaseConfig& c) {
+  if (c.engine.dimension != 3)
+    fail(c, "engine.dimension", "the DEM engine simulates spheres in 3D; dimension = 2 is not available yet");
+  const dem::DerivedQuantities d = dem::derive(c);
+
+  if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");
+  if (d.steps_per_contact < kMinStepsPerContact) {
+    const double suggested = d.contact_duration / kMinStepsPerContact;
+    fail(c, d.time_step_from_case ? "run.time_step" : "run.collision_steps",
+         "time step " + std::to_string(d.time_step) + " s resolves a contact of " +
+             std::to_string(d.contact_duration) + " s in only " + std::to_string(d.steps_per_contact) +
+             " steps; use a time step <= " + std::to_string(suggested) + " s (at least 5 steps per contact)");
+  }
+  // The cell grid needs two cells across every periodic axis.
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!c.domain.periodic(axis)) continue;
+    const double needed = 2.0 * (d.max_diameter + d.skin);
+    if (c.domain.length(axis) < needed)
+      fail(c, "domain.hi", std::string("periodic axis ") + "xyz"[axis] + " is " + std::to_string(c.domain.length(axis)) +
+                               " m long; it must be at least 2 (largest diameter + skin) = " + std::to_string(needed) + " m");
+  }
+  for (int f = 0; f < 6; ++f) {
+    if (c.domain.faces[f] != FaceKind::bumpy) continue;
+    const WallConfig& w = c.walls[f];
+    const double bump = w.bump_diameter > 0.0 ? w.bump_diameter : c.species.front().diameter;
+    const double spacing = w.spacing > 0.0 ? w.spacing : bump;
+    const std::string key = std::string("walls.") + kFaceNames[f] + ".spacing";
+    if (spacing < bump * (1.0 - 1e-12)) fail(c, key, "bumps would overlap: spacing must be at least bump_diameter");
+    double smallest = 0.0;
+    for (const auto& s : c.species)
+      if (!s.frozen && (smallest == 0.0 || s.diameter < smallest)) smallest = s.diameter;
+    const double limit = max_bump_spacing(w.lattice, 0.5 * bump, 0.5 * smallest);
+    if (spacing >= limit)
+      fail(c, key, "spacing " + std::to_string(spacing) + " m lets a sphere of diameter " + std::to_string(smallest) +
+                       " m through the " + w.lattice + " lattice; it must be below " + std::to_string(limit) + " m");
+  }
+  // Particles must fit where they are placed.
+  if (c.particles.init != "file") {
+    Vec3 lo = c.particles.region_lo.value_or(c.domain.lo);
+    Vec3 hi = c.particles.region_hi.value_or(c.domain.hi);
+    for (int axis = 0; axis < 3; ++axis) {
+      if (lo[axis] < c.domain.lo[axis] || hi[axis] > c.domain.hi[axis])
+        fail(c, "particles.region_lo", "the placement region must lie inside the domain");
+      if (!(hi[axis] - lo[axis] > d.max_diameter))
+        fail(c, "particles.region_hi", "the placement region must be wider than the largest diameter on every axis");
+    }
+    double volume = 1.0;
+    for (int axis = 0; axis < 3; ++axis) volume *= hi[axis] - lo[axis];
+    double solids = 0.0;
+    for (const auto& s : c.species) solids += s.count * M_PI / 6.0 * s.diameter * s.diameter * s.diameter;
+    if (c.particles.init == "random" && solids / volume > kMaxRandomSolidsFraction)
+      fail(c, "species.count", "the particles fill " + std::to_string(solids / volume) +
+                                   " of the placement region; random placement needs at most " +
+                                   std::to_string(kMaxRandomSolidsFraction) + " (enlarge the domain or region)");
+    if (c.particles.init == "lattice") {
+      const double spacing = c.particles.lattice_spacing * d.max_diameter;
+      long sites = 1;
+      for (int axis = 0; axis < 3; ++axis) sites *= static_cast<long>(std::floor((hi[axis] - lo[axis]) / spacing));
+      long total = 0;
+      for (const auto& s : c.species) total += s.count;
+      if (total > sites)
+        fail(c, "species.count", std::to_string(total) + " particles do not fit on the " + std::to_string(sites) +
+                                     " lattice sites of the placement region");
+    }
+  } else {
+    for (std::size_t i = 0; i < c.initial_particles.size(); ++i) {
+      const auto& p = c.initial_particles[i];
+      for (int axis = 0; axis < 3; ++axis) {
+        const bool closed_lo = c.domain.faces[axis * 2] != FaceKind::open && !c.domain.periodic(axis);
+        const bool closed_hi = c.domain.faces[axis * 2 + 1] != FaceKind::open && !c.domain.periodic(axis);
+        if ((closed_lo && p.position[axis] < c.domain.lo[axis]) || (closed_hi && p.position[axis] > c.domain.hi[axis]))
+          throw InputError(c.particles.file, "particle " + std::to_string(i + 1),
+                           std::string("lies outside the domain on axis ") + "xyz"[axis]);
+      }
+    }
+  }
+  if (c.drive.enabled && c.domain.faces[c.drive.face] == FaceKind::periodic)
+    fail(c, "drive.face", "cannot drive a periodic face");
+  if (c.output.snapshot_interval > 0.0 && c.output.snapshot_interval < d.time_step)
+    fail(c, "output.snapshot_interval", "must be at least one time step");
+  if (c.output.interval < d.time_step) fail(c, "output.interval", "must be at least one time step");
+  // Refuse sizes that would exhaust memory rather than start and fail hours later.
+  constexpr long kMaxParticles = 200'000'000;
+  if (d.moving_particles + d.frozen_particles > kMaxParticles)
+    fail(c, "species.count", "more than 2e8 particles cannot run on one machine");
+  const double steps = c.run.duration / d.time_step;
+  if (steps > 1e13) fail(c, "run.duration", "needs more than 1e13 time steps");
+}
+
+}  // namespace
+
+void validate_case(const CaseConfig& c) {
+  if (c.engine.kind == "edmd")
+    fail(c, "engine.kind", "the event-driven engine (edmd) is not available in this version yet");
+  validate_dem(c);
+}
+
+}  // namespace grainflow

@@ -1,0 +1,80 @@
+// Contact memory (a law's State) for every neighbor pair and every particle-wall pair, carried
+// across neighbor-list rebuilds and particle re-orderings by particle id.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "grainflow/dem/neighbor_list.hpp"
+
+namespace grainflow::dem {
+
+template <class State>
+struct ContactStore {
+  std::vector<State> pair_state;           // aligned with NeighborPairs::partner
+  std::vector<std::uint8_t> pair_touching; // 1 while the pair overlaps
+  std::vector<std::vector<State>> wall_state;            // [wall][particle]
+  std::vector<std::vector<std::uint8_t>> wall_touching;  // [wall][particle]
+
+  // Snapshot of the list the pair states refer to, by id, for the next transfer.
+  std::vector<std::uint32_t> ids_at_build;       // index -> id when the list was built
+  std::vector<std::uint32_t> index_at_build;     // id -> index when the list was built
+
+  void resize_walls(std::size_t walls, std::size_t particles) {
+    wall_state.assign(walls, std::vector<State>(particles));
+    wall_touching.assign(walls, std::vector<std::uint8_t>(particles, 0));
+  }
+
+  void permute_walls(const std::vector<std::uint32_t>& order) {
+    for (std::size_t w = 0; w < wall_state.size(); ++w) {
+      std::vector<State> s(order.size());
+      std::vector<std::uint8_t> t(order.size());
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        s[i] = wall_state[w][order[i]];
+        t[i] = wall_touching[w][order[i]];
+      }
+      wall_state[w].swap(s);
+      wall_touching[w].swap(t);
+    }
+  }
+
+  // Moves pair states from `old_list` (built when ids_at_build was recorded) onto `new_list`.
+  void transfer(const NeighborPairs& old_list, const NeighborPairs& new_list, const std::vector<std::uint32_t>& ids) {
+    std::vector<State> states(new_list.pair_count());
+    std::vector<std::uint8_t> touching(new_list.pair_count(), 0);
+    if (!old_list.offsets.empty()) {
+      for (std::size_t i = 0; i + 1 < new_list.offsets.size(); ++i) {
+        const std::uint32_t old_i = index_at_build[ids[i]];
+        const std::uint32_t old_begin = old_list.offsets[old_i], old_end = old_list.offsets[old_i + 1];
+        bool any = false;
+        for (std::uint32_t k = old_begin; k < old_end && !any; ++k) any = pair_touching[k] != 0;
+        if (!any) continue;
+        for (std::uint32_t k = new_list.offsets[i]; k < new_list.offsets[i + 1]; ++k) {
+          const std::uint32_t partner_id = ids[new_list.partner[k]];
+          for (std::uint32_t q = old_begin; q < old_end; ++q) {
+            if (ids_at_build[old_list.partner[q]] == partner_id) {
+              if (pair_touching[q]) {
+                states[k] = pair_state[q];
+                touching[k] = 1;
+              }
+              break;
+            }
+          }
+        }
+      }
+    }
+    pair_state.swap(states);
+    pair_touching.swap(touching);
+    record_ids(ids);
+  }
+
+  void record_ids(const std::vector<std::uint32_t>& ids) {
+    ids_at_build = ids;
+    std::uint32_t max_id = 0;
+    for (std::uint32_t id : ids) max_id = std::max(max_id, id);
+    index_at_build.assign(static_cast<std::size_t>(max_id) + 1, 0);
+    for (std::size_t i = 0; i < ids.size(); ++i) index_at_build[ids[i]] = static_cast<std::uint32_t>(i);
+  }
+};
+
+}  // namespace grainflow::dem

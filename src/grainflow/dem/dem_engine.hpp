@@ -1,0 +1,322 @@
+// The soft-sphere engine: velocity Verlet for translation and rotation, cell-grid neighbor lists
+// rebuilt when any particle has moved half the skin, pair and wall contacts evaluated by the
+// contact law `Law` (a template parameter, so the hot loop inlines it).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "grainflow/core/error.hpp"
+#include "grainflow/dem/contact_kinematics.hpp"
+#include "grainflow/dem/contact_store.hpp"
+#include "grainflow/dem/dem_state.hpp"
+#include "grainflow/dem/neighbor_list.hpp"
+
+namespace grainflow::dem {
+
+// Running statistics the force loop collects for the monitors.
+struct ContactStatistics {
+  double max_overlap_ratio = 0.0;  // max overlap / smaller diameter since the last reset
+  long contacts = 0;               // particle-particle contacts at the last force evaluation
+  long wall_contacts = 0;
+  long rebuilds = 0;
+};
+
+template <class Law>
+class DemEngine {
+ public:
+  using Params = typename Law::Params;
+  using State = typename Law::State;
+
+  DemEngine(DemState state, Params pair_params, std::vector<Params> wall_params, int threads, int sort_every)
+      : s_(std::move(state)), pair_params_(pair_params), wall_params_(std::move(wall_params)),
+        threads_(std::max(1, threads)), sort_every_(sort_every) {
+    contacts_.resize_walls(s_.walls.size(), s_.particles.size());
+    bump_wall_.fill(-1);
+    for (std::size_t w = 0; w < s_.walls.size(); ++w)
+      if (s_.walls[w].bumpy && s_.walls[w].motion.moves()) bump_wall_[s_.walls[w].face] = static_cast<int>(w);
+    double max_radius = 0.0;
+    for (double r : s_.particles.target_radius) max_radius = std::max(max_radius, r);
+    grid_.setup(s_.box, 2.0 * max_radius + s_.skin);
+    for (auto& wall : s_.walls) wall.move_to(s_.time);
+    rebuild(true);
+    compute_forces();
+  }
+
+  DemState& state() { return s_; }
+  const DemState& state() const { return s_; }
+  const ContactStore<State>& contacts() const { return contacts_; }
+  const NeighborPairs& pairs() const { return pairs_; }
+  ContactStatistics& statistics() { return stats_; }
+
+  // One velocity-Verlet step: half kick, drift, walls, (rebuild), forces, half kick.
+  void step() {
+    ParticleStore& p = s_.particles;
+    const double dt = s_.time_step;
+    const std::size_t n = p.size();
+    half_kick();
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::size_t i = 0; i < n; ++i)
+      if (p.motion[i] == Motion::free) p.position[i] += dt * p.velocity[i];
+    s_.time = (s_.step + 1) * dt;  // no accumulated round-off in the clock
+    ++s_.step;
+    move_walls();
+    grow_radii();
+    if (needs_rebuild()) rebuild(false);
+    compute_forces();
+    half_kick();
+  }
+
+  void compute_forces() {
+    ParticleStore& p = s_.particles;
+    const std::size_t n = p.size();
+    // Gravity, and zero for the non-moving.
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      p.force[i] = p.motion[i] == Motion::free ? p.mass[i] * s_.gravity : Vec3{};
+      p.torque[i] = Vec3{};
+    }
+    pair_forces();
+    wall_forces();
+  }
+
+  // Positions with periodic crossings undone, for diffusion and outputs.
+  Vec3 unwrapped_position(std::size_t i) const { return s_.box.unwrapped(s_.particles.position[i], s_.particles.image[i]); }
+
+ private:
+  void half_kick() {
+    ParticleStore& p = s_.particles;
+    const double half = 0.5 * s_.time_step;
+    const std::size_t n = p.size();
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      if (p.motion[i] != Motion::free) continue;
+      p.velocity[i] += (half * p.inv_mass[i]) * p.force[i];
+      p.angular_velocity[i] += (half * p.inv_inertia[i]) * p.torque[i];
+    }
+  }
+
+  void move_walls() {
+    for (auto& wall : s_.walls) wall.move_to(s_.time);
+    // Bumps ride on their wall: shift them by the wall's displacement since the last step.
+    ParticleStore& p = s_.particles;
+    bool any_bumps = false;
+    std::array<Vec3, 6> delta{};
+    for (int f = 0; f < 6; ++f) {
+      if (bump_wall_[f] < 0) continue;
+      const WallMotion& motion = s_.walls[bump_wall_[f]].motion;
+      const Vec3 now = motion.displacement(s_.time);
+      delta[f] = now - s_.bump_displacement[f];
+      s_.bump_displacement[f] = now;
+      s_.bump_velocity[f] = motion.velocity(s_.time);
+      any_bumps = true;
+    }
+    if (!any_bumps) return;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.motion[i] != Motion::wall_bump) continue;
+      p.position[i] += delta[p.wall[i]];
+      p.velocity[i] = s_.bump_velocity[p.wall[i]];
+    }
+  }
+
+  void grow_radii() {
+    if (s_.expansion_rate <= 0.0) return;
+    ParticleStore& p = s_.particles;
+    bool growing = false;
+    const double dr = s_.expansion_rate * s_.time_step;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.radius[i] < p.target_radius[i]) {
+        p.radius[i] = std::min(p.target_radius[i], p.radius[i] + dr);
+        growing = true;
+      }
+    }
+    if (!growing) s_.expansion_rate = 0.0;
+  }
+
+  bool needs_rebuild() const {
+    const ParticleStore& p = s_.particles;
+    const double limit = 0.25 * s_.skin * s_.skin;  // (skin / 2)^2
+    const std::size_t n = p.size();
+    int moved = 0;
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(| : moved)
+    for (std::size_t i = 0; i < n; ++i)
+      if (norm2(p.position[i] - position_at_build_[i]) > limit) moved = 1;
+    return moved != 0;
+  }
+
+  void rebuild(bool first) {
+    ParticleStore& p = s_.particles;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (!std::isfinite(p.position[i].x) || !std::isfinite(p.position[i].y) || !std::isfinite(p.position[i].z))
+        throw RunError("particle " + std::to_string(p.id[i]) + " has a non-finite position at t = " +
+                       std::to_string(s_.time) + " s; the time step is probably too large for the stiffness");
+      s_.box.wrap(p.position[i], p.image[i]);
+    }
+    grid_.bin(p.position);
+    const bool sort_now = sort_every_ > 0 && (first || ++rebuilds_since_sort_ >= sort_every_);
+    if (sort_now) {
+      rebuilds_since_sort_ = 0;
+      const std::vector<std::uint32_t> order = grid_.cell_order();
+      p.permute(order);
+      contacts_.permute_walls(order);
+      grid_.bin(p.position);
+    }
+    NeighborPairs fresh;
+    grid_.build_pairs(p, s_.box, s_.skin, threads_, fresh);
+    if (first) {
+      contacts_.pair_state.assign(fresh.pair_count(), State{});
+      contacts_.pair_touching.assign(fresh.pair_count(), 0);
+      contacts_.record_ids(p.id);
+    } else {
+      contacts_.transfer(pairs_, fresh, p.id);
+    }
+    pairs_ = std::move(fresh);
+    position_at_build_ = p.position;
+    ++stats_.rebuilds;
+  }
+
+  void pair_forces() {
+    ParticleStore& p = s_.particles;
+    const std::size_t n = p.size();
+    const auto shifts = s_.box.shift_table();
+    const double dt = s_.time_step;
+    const int threads = threads_;
+    if (threads > 1) {
+      thread_force_.resize(threads);
+      thread_torque_.resize(threads);
+    }
+    double max_ratio = stats_.max_overlap_ratio;
+    long contacts = 0;
+#pragma omp parallel num_threads(threads) reduction(max : max_ratio) reduction(+ : contacts)
+    {
+#ifdef _OPENMP
+      const int t = omp_get_thread_num();
+#else
+      const int t = 0;
+#endif
+      Vec3* force = p.force.data();
+      Vec3* torque = p.torque.data();
+      if (threads > 1) {
+        thread_force_[t].assign(n, Vec3{});
+        thread_torque_[t].assign(n, Vec3{});
+        force = thread_force_[t].data();
+        torque = thread_torque_[t].data();
+      }
+      const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+      for (std::size_t i = begin; i < end; ++i) {
+        const Vec3 xi = p.position[i];
+        const double ri = p.radius[i];
+        for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k) {
+          const std::uint32_t j = pairs_.partner[k];
+          const Vec3 d = xi - (p.position[j] + shifts[pairs_.shift[k]]);
+          const double rj = p.radius[j];
+          const double sum = ri + rj;
+          const double r2 = norm2(d);
+          if (r2 >= sum * sum) {
+            contacts_.pair_touching[k] = 0;
+            continue;
+          }
+          if (!contacts_.pair_touching[k]) {
+            contacts_.pair_touching[k] = 1;
+            contacts_.pair_state[k] = State{};
+          }
+          const double r = std::sqrt(r2);
+          ContactKinematics c;
+          c.normal = d * (1.0 / r);
+          c.overlap = sum - r;
+          const Vec3 relative = p.velocity[i] - p.velocity[j];
+          c.normal_velocity = dot(relative, c.normal);
+          c.slip_velocity = relative - c.normal_velocity * c.normal -
+                            cross(ri * p.angular_velocity[i] + rj * p.angular_velocity[j], c.normal);
+          c.effective_mass = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
+          const ContactForce f = Law::force(pair_params_, contacts_.pair_state[k], c, dt);
+          const Vec3 total = f.normal * c.normal + f.tangential;
+          const Vec3 arm = cross(c.normal, f.tangential);  // torque = -r n x F_t on both
+          force[i] += total;
+          force[j] -= total;
+          torque[i] -= ri * arm;
+          torque[j] -= rj * arm;
+          max_ratio = std::max(max_ratio, c.overlap / (2.0 * std::min(ri, rj)));
+          ++contacts;
+        }
+      }
+    }
+    if (threads > 1) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        for (int t = 0; t < threads; ++t) {
+          p.force[i] += thread_force_[t][i];
+          p.torque[i] += thread_torque_[t][i];
+        }
+      }
+    }
+    stats_.max_overlap_ratio = max_ratio;
+    stats_.contacts = contacts;
+  }
+
+  void wall_forces() {
+    ParticleStore& p = s_.particles;
+    const std::size_t n = p.size();
+    const double dt = s_.time_step;
+    long wall_contacts = 0;
+    double max_ratio = stats_.max_overlap_ratio;
+    for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+      const FlatWall& wall = s_.walls[w];
+      const Params& params = wall_params_[w];
+      auto& states = contacts_.wall_state[w];
+      auto& touching = contacts_.wall_touching[w];
+      Vec3 normal;
+      normal[wall.axis] = wall.inward;
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : wall_contacts) reduction(max : max_ratio)
+      for (std::size_t i = 0; i < n; ++i) {
+        if (p.motion[i] != Motion::free) continue;
+        const double ri = p.radius[i];
+        const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
+        if (gap >= ri) {
+          touching[i] = 0;
+          continue;
+        }
+        if (!touching[i]) {
+          touching[i] = 1;
+          states[i] = State{};
+        }
+        ContactKinematics c;
+        c.normal = normal;
+        c.overlap = ri - gap;
+        const Vec3 relative = p.velocity[i] - wall.velocity;
+        c.normal_velocity = dot(relative, normal);
+        c.slip_velocity = relative - c.normal_velocity * normal - cross(ri * p.angular_velocity[i], normal);
+        c.effective_mass = p.mass[i];
+        const ContactForce f = Law::force(params, states[i], c, dt);
+        p.force[i] += f.normal * normal + f.tangential;
+        p.torque[i] -= ri * cross(normal, f.tangential);
+        max_ratio = std::max(max_ratio, c.overlap / (2.0 * ri));
+        ++wall_contacts;
+      }
+    }
+    stats_.wall_contacts = wall_contacts;
+    stats_.max_overlap_ratio = max_ratio;
+  }
+
+  DemState s_;
+  Params pair_params_;
+  std::vector<Params> wall_params_;
+  int threads_;
+  int sort_every_;
+  int rebuilds_since_sort_ = 0;
+  CellGrid grid_;
+  NeighborPairs pairs_;
+  ContactStore<State> contacts_;
+  std::vector<Vec3> position_at_build_;
+  std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
+  std::array<int, 6> bump_wall_{};  // wall carrying each face's bumps, -1 when they stand still
+  ContactStatistics stats_;
+};
+
+}  // namespace grainflow::dem

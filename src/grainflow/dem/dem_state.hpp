@@ -1,0 +1,52 @@
+// Everything a DEM run holds apart from the contact law: particles, box, walls and their motion,
+// clock and step counters. Built from a case by build_dem_state() (initial_state.cpp).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "grainflow/core/case_config.hpp"
+#include "grainflow/core/periodic_box.hpp"
+#include "grainflow/dem/wall_motion.hpp"
+#include "grainflow/particles/particle_store.hpp"
+
+namespace grainflow::dem {
+
+// A flat wall on one face of the box: a boundary sphere of infinite mass (section 2.6.2).
+struct FlatWall {
+  int face = 0;
+  int axis = 0;
+  double inward = 1.0;          // +1 on a lo face (normal +e_axis), -1 on a hi face
+  double base_position = 0.0;   // m, plane coordinate at t = 0
+  WallMotion motion;
+  double position = 0.0;        // m, current plane coordinate
+  Vec3 velocity;                // m/s, current
+  double restitution = 1.0;     // walton_braun: k2 = k1 / e^2
+  double friction = 0.0;
+  double gamma_n = 0.0;         // linear_dashpot
+  bool bumpy = false;           // backing plane of a bumpy wall
+
+  void move_to(double t) {
+    position = base_position + motion.displacement(t)[axis];
+    velocity = motion.velocity(t);
+  }
+};
+
+struct DemState {
+  ParticleStore particles;
+  PeriodicBox box;
+  Vec3 gravity;              // m/s^2
+  double time = 0.0;         // s
+  double time_step = 0.0;    // s
+  long step = 0;
+  double skin = 0.0;         // m
+  std::vector<FlatWall> walls;
+  std::array<Vec3, 6> bump_velocity{};      // m/s of the bumps of each face
+  std::array<Vec3, 6> bump_displacement{};  // m, displacement applied so far to each face's bumps
+  double expansion_rate = 0.0;              // m/s of radius growth (section 2.2), 0 when done
+  std::vector<SpeciesConfig> species;
+};
+
+DemState build_dem_state(const CaseConfig& c);
+
+}  // namespace grainflow::dem

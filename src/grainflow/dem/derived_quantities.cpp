@@ -1,0 +1,151 @@
+#include "grainflow/dem/derived_quantities.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace grainflow::dem {
+
+
+
+double walton_braun_time_step(double restitution, int collision_steps, double k1, double mass) {
+  return M_PI * restitution / collision_steps * std::sqrt(mass / (2.0 * k1));
+}
+
+double walton_braun_contact_duration(double k1, double k2, double effective_mass) {
+  return 0.5 * M_PI * (std::sqrt(effective_mass / k1) + std::sqrt(effective_mass / k2));
+}
+
+double hertz_max_overlap(double youngs_modulus, double poisson_ratio, double diameter, double mass, double speed) {
+  const double base = 15.0 * mass * speed * speed * (1.0 - poisson_ratio * poisson_ratio) /
+                      (4.0 * youngs_modulus * std::sqrt(diameter));
+  return std::pow(base, 0.4);
+}
+
+double hertz_equivalent_k1(double youngs_modulus, double poisson_ratio, double diameter, double mass, double speed) {
+  const double alpha = hertz_max_overlap(youngs_modulus, poisson_ratio, diameter, mass, speed);
+  return mass * (speed / alpha) * (speed / alpha);
+}
+
+DerivedQuantities derive(const CaseConfig& c) {
+  DerivedQuantities d;
+  d.model = c.contact.model;
+  // Reference species: the lightest moving one (shortest contacts).
+  double lightest = 0.0;
+  for (std::size_t s = 0; s < c.species.size(); ++s) {
+    const auto& sp = c.species[s];
+    d.max_diameter = std::max(d.max_diameter, sp.diameter);
+    if (sp.frozen) continue;
+    const double m = sp.mass();
+    if (lightest == 0.0 || m < lightest) {
+      lightest = m;
+      d.reference_species = static_cast<int>(s);
+    }
+  }
+  if (lightest == 0.0) lightest = c.species.front().mass();
+  const auto& ref = c.species[d.reference_species];
+  d.reference_mass = lightest;
+  d.reference_diameter = ref.diameter;
+
+  const double pair_mass = 0.5 * d.reference_mass;
+  if (c.contact.model == "walton_braun") {
+    d.k1 = c.contact.k1;
+    d.restitution = c.contact.restitution;
+    d.k2 = d.k1 / (d.restitution * d.restitution);
+    d.contact_duration = walton_braun_contact_duration(d.k1, d.k2, pair_mass);
+    d.time_step = walton_braun_time_step(d.restitution, c.run.collision_steps, d.k1, d.reference_mass);
+  } else {
+    d.k1 = d.k2 = c.contact.kn;
+    const double omega0_sq = c.contact.kn / pair_mass;
+    const double omega_sq = omega0_sq - 0.25 * c.contact.gamma_n * c.contact.gamma_n;
+    d.contact_duration = omega_sq > 0.0 ? M_PI / std::sqrt(omega_sq) : 0.0;
+    d.restitution = omega_sq > 0.0 ? std::exp(-0.5 * c.contact.gamma_n * d.contact_duration) : 0.0;
+    d.time_step = d.contact_duration / c.run.collision_steps;
+  }
+  if (c.run.time_step > 0.0) {
+    d.time_step = c.run.time_step;
+    d.time_step_from_case = true;
+  }
+  d.steps_per_contact = d.contact_duration > 0.0 ? d.contact_duration / d.time_step : 0.0;
+  // n of eq. (2-5-4) for the step in use: n = pi e sqrt(m / 2K1) / dt.
+  d.collision_steps = M_PI * d.restitution * std::sqrt(d.reference_mass / (2.0 * d.k1)) / d.time_step;
+
+  // Gravity axis: the axis with the largest gravity component (y when there is none).
+  d.gravity_magnitude = norm(c.gravity);
+  d.gravity_axis = 1;
+  double largest = 0.0;
+  for (int axis = 0; axis < 3; ++axis)
+    if (std::fabs(c.gravity[axis]) > largest) {
+      largest = std::fabs(c.gravity[axis]);
+      d.gravity_axis = axis;
+    }
+
+  if (c.drive.enabled) {
+    double speed_sq = 0.0, mean_sq = 0.0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double v0 = c.drive.amplitude[axis] * 2.0 * M_PI * c.drive.frequency[axis];
+      mean_sq += 0.5 * v0 * v0;
+      speed_sq = std::max(speed_sq, 0.0);
+    }
+    // Peak speed of the face: maximise |v(t)| over one period numerically (phases differ by axis).
+    const double f_min = [&] {
+      double f = 0.0;
+      for (int axis = 0; axis < 3; ++axis)
+        if (c.drive.frequency[axis] > 0.0 && (f == 0.0 || c.drive.frequency[axis] < f)) f = c.drive.frequency[axis];
+      return f;
+    }();
+    if (f_min > 0.0) {
+      const int samples = 2000;
+      for (int k = 0; k < samples; ++k) {
+        const double t = k / (samples * f_min);
+        double s2 = 0.0;
+        for (int axis = 0; axis < 3; ++axis) {
+          const double w = 2.0 * M_PI * c.drive.frequency[axis];
+          const double v = c.drive.amplitude[axis] * w * std::cos(w * t + c.drive.phase[axis]);
+          s2 += v * v;
+        }
+        speed_sq = std::max(speed_sq, s2);
+      }
+    }
+    d.floor_peak_speed = std::sqrt(speed_sq);
+    const double mean_diameter_g = ref.diameter * (d.gravity_magnitude > 0.0 ? d.gravity_magnitude : 9.81);
+    d.boundary_fluctuation_velocity = std::sqrt(mean_sq / 3.0) / std::sqrt(mean_diameter_g);
+    const int g = d.gravity_axis;
+    const double omega = 2.0 * M_PI * c.drive.frequency[g];
+    if (d.gravity_magnitude > 0.0) d.shaking_acceleration = c.drive.amplitude[g] * omega * omega / d.gravity_magnitude;
+  }
+  // A sphere hitting the (infinitely heavy) floor at its peak speed: alpha = v sqrt(m / K1).
+  d.expected_floor_overlap = d.floor_peak_speed * std::sqrt(d.reference_mass / d.k1);
+  if (ref.youngs_modulus > 0.0 && d.floor_peak_speed > 0.0)
+    d.hertz_k1 = hertz_equivalent_k1(ref.youngs_modulus, ref.poisson_ratio, ref.diameter, d.reference_mass,
+                                     d.floor_peak_speed);
+
+  if (c.contact.model == "walton_braun") {
+    double ratk = c.contact.ratk;
+    if (ratk <= 0.0) {
+      const double nu = ref.poisson_ratio >= 0.0 ? ref.poisson_ratio : 0.3;
+      ratk = 2.0 * (1.0 - nu) / (2.0 - nu);
+    }
+    d.tangential_stiffness = ratk * d.k1;
+  } else {
+    d.tangential_stiffness = c.contact.kt;
+  }
+
+  // Mass hold-up over the floor area normal to gravity (eq. 4-1-3): m_t = sum(pi d^3/6) / (A d).
+  double area = 1.0;
+  for (int axis = 0; axis < 3; ++axis)
+    if (axis != d.gravity_axis) area *= c.domain.length(axis);
+  double volume = 0.0;
+  for (const auto& sp : c.species) {
+    if (sp.frozen) {
+      d.frozen_particles += sp.count;
+      continue;
+    }
+    d.moving_particles += sp.count;
+    volume += sp.count * M_PI / 6.0 * sp.diameter * sp.diameter * sp.diameter;
+  }
+  d.mass_holdup = volume / (area * ref.diameter);
+  d.skin = c.run.skin > 0.0 ? c.run.skin : 0.15 * d.max_diameter;
+  return d;
+}
+
+}  // namespace grainflow::dem

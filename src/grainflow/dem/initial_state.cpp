@@ -1,0 +1,230 @@
+// Builds the initial DEM state from a case: walls and bumps, then particles placed at random with
+// radius expansion (section 2.2), on a lattice, or read from a file; initial velocities.
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "grainflow/core/error.hpp"
+#include "grainflow/dem/dem_state.hpp"
+#include "grainflow/dem/derived_quantities.hpp"
+#include "grainflow/dem/neighbor_list.hpp"
+
+namespace grainflow::dem {
+namespace {
+
+void add_particle(ParticleStore& p, const SpeciesConfig& species, int species_index, double diameter,
+                  const Vec3& position, Motion motion, int wall = -1) {
+  const std::size_t i = p.size();
+  p.resize(i + 1);
+  const double r = 0.5 * diameter;
+  const double m = M_PI / 6.0 * diameter * diameter * diameter * species.density;
+  p.position[i] = position;
+  p.radius[i] = r;
+  p.target_radius[i] = r;
+  p.mass[i] = m;
+  const bool moves = motion == Motion::free;
+  p.inv_mass[i] = moves ? 1.0 / m : 0.0;
+  p.inv_inertia[i] = moves ? 1.0 / (0.4 * m * r * r) : 0.0;
+  p.species[i] = species_index;
+  p.id[i] = static_cast<std::uint32_t>(i);
+  p.motion[i] = motion;
+  p.wall[i] = static_cast<std::int8_t>(wall);
+}
+
+void add_walls(const CaseConfig& c, DemState& s) {
+  for (int f = 0; f < 6; ++f) {
+    const FaceKind kind = c.domain.faces[f];
+    if (kind != FaceKind::wall && kind != FaceKind::bumpy) continue;
+    const WallConfig& w = c.walls[f];
+    FlatWall wall;
+    wall.face = f;
+    wall.axis = face_axis(f);
+    wall.inward = face_is_high(f) ? -1.0 : 1.0;
+    wall.base_position = face_is_high(f) ? c.domain.hi[wall.axis] : c.domain.lo[wall.axis];
+    wall.motion = WallMotion(w.velocity, c.drive.enabled && c.drive.face == f ? &c.drive : nullptr);
+    wall.restitution = w.restitution > 0.0 ? w.restitution : c.contact.restitution;
+    wall.friction = w.friction >= 0.0 ? w.friction : c.contact.friction;
+    wall.gamma_n = w.gamma_n >= 0.0 ? w.gamma_n : c.contact.gamma_n;
+    wall.bumpy = kind == FaceKind::bumpy;
+    wall.move_to(0.0);
+    s.walls.push_back(wall);
+  }
+}
+
+// Fixed half-spheres centred on the wall plane, square or triangular lattice (section 2.6.3).
+void add_bumps(const CaseConfig& c, DemState& s) {
+  for (const FlatWall& wall : s.walls) {
+    if (!wall.bumpy) continue;
+    const WallConfig& w = c.walls[wall.face];
+    const double bump = w.bump_diameter > 0.0 ? w.bump_diameter : c.species.front().diameter;
+    const double spacing = w.spacing > 0.0 ? w.spacing : bump;
+    SpeciesConfig species;
+    species.name = std::string("bump_") + kFaceNames[wall.face];
+    species.diameter = bump;
+    species.density = c.species.front().density;
+    species.frozen = true;
+    const int species_index = static_cast<int>(s.species.size());
+    const int a = (wall.axis + 1) % 3, b = (wall.axis + 2) % 3;  // in-plane axes
+    const bool triangular = w.lattice == "triangular";
+    const double row = triangular ? spacing * std::sqrt(3.0) / 2.0 : spacing;
+    const int rows = std::max(1, static_cast<int>(std::floor(c.domain.length(b) / row + 1e-9)));
+    const int columns = std::max(1, static_cast<int>(std::floor(c.domain.length(a) / spacing + 1e-9)));
+    long count = 0;
+    for (int rb = 0; rb < rows; ++rb) {
+      const double offset = triangular && (rb % 2 == 1) ? 0.5 * spacing : 0.0;
+      for (int ca = 0; ca < columns; ++ca) {
+        Vec3 x;
+        x[wall.axis] = wall.position;
+        x[a] = c.domain.lo[a] + 0.5 * spacing + offset + ca * spacing;
+        x[b] = c.domain.lo[b] + 0.5 * row + rb * row;
+        if (x[a] >= c.domain.hi[a]) x[a] -= c.domain.length(a);
+        add_particle(s.particles, species, species_index, bump, x, Motion::wall_bump, wall.face);
+        s.particles.velocity.back() = wall.velocity;
+        ++count;
+      }
+    }
+    species.count = count;
+    s.species.push_back(species);
+  }
+}
+
+Vec3 region_lo(const CaseConfig& c) { return c.particles.region_lo.value_or(c.domain.lo); }
+Vec3 region_hi(const CaseConfig& c) { return c.particles.region_hi.value_or(c.domain.hi); }
+
+// Species of each placed particle, in a shuffled order so mixtures start mixed.
+std::vector<int> species_sequence(const CaseConfig& c, std::mt19937_64& rng) {
+  std::vector<int> sequence;
+  for (std::size_t s = 0; s < c.species.size(); ++s)
+    sequence.insert(sequence.end(), static_cast<std::size_t>(c.species[s].count), static_cast<int>(s));
+  if (c.species.size() > 1) std::shuffle(sequence.begin(), sequence.end(), rng);
+  return sequence;
+}
+
+void place_lattice(const CaseConfig& c, DemState& s, std::mt19937_64& rng, double max_diameter) {
+  const Vec3 lo = region_lo(c), hi = region_hi(c);
+  const double spacing = c.particles.lattice_spacing * max_diameter;
+  int n[3];
+  for (int axis = 0; axis < 3; ++axis) n[axis] = static_cast<int>(std::floor((hi[axis] - lo[axis]) / spacing));
+  const auto sequence = species_sequence(c, rng);
+  // Fill along the axes perpendicular to gravity first, so a bed builds up from the floor.
+  const int up = dem::derive(c).gravity_axis;
+  const int a = (up + 1) % 3, b = (up + 2) % 3;
+  std::size_t placed = 0;
+  for (int k = 0; k < n[up] && placed < sequence.size(); ++k)
+    for (int jb = 0; jb < n[b] && placed < sequence.size(); ++jb)
+      for (int ia = 0; ia < n[a] && placed < sequence.size(); ++ia) {
+        Vec3 x;
+        x[a] = lo[a] + (ia + 0.5) * spacing;
+        x[b] = lo[b] + (jb + 0.5) * spacing;
+        const bool down = c.gravity[up] <= 0.0;
+        x[up] = down ? lo[up] + (k + 0.5) * spacing : hi[up] - (k + 0.5) * spacing;
+        const int sp = sequence[placed++];
+        add_particle(s.particles, c.species[sp], sp, c.species[sp].diameter, x,
+                     c.species[sp].frozen ? Motion::frozen : Motion::free);
+      }
+}
+
+// Random centres, then each radius shrunk to its share of the nearest-neighbor distance and to the
+// distance from solid faces; radii grow back at one constant rate over expansion_time (section 2.2).
+void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
+  const Vec3 lo = region_lo(c), hi = region_hi(c);
+  const auto sequence = species_sequence(c, rng);
+  const std::size_t first = s.particles.size();
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int sp : sequence) {
+    Vec3 x;
+    const double r = 0.5 * c.species[sp].diameter;
+    for (int axis = 0; axis < 3; ++axis) {
+      // Keep centres at least a radius inside solid faces of the region.
+      const double margin = c.domain.periodic(axis) ? 0.0 : r;
+      x[axis] = lo[axis] + margin + unit(rng) * (hi[axis] - lo[axis] - 2.0 * margin);
+    }
+    add_particle(s.particles, c.species[sp], sp, c.species[sp].diameter, x,
+                 c.species[sp].frozen ? Motion::frozen : Motion::free);
+  }
+  ParticleStore& p = s.particles;
+  double max_radius = 0.0;
+  for (std::size_t i = first; i < p.size(); ++i) max_radius = std::max(max_radius, p.target_radius[i]);
+  CellGrid grid;
+  grid.setup(s.box, 2.0 * max_radius);
+  grid.bin(p.position);
+  NeighborPairs near;
+  grid.build_pairs(p, s.box, 0.0, 1, near);
+  const auto shifts = s.box.shift_table();
+  std::vector<double> allowed(p.target_radius);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (std::uint32_t k = near.offsets[i]; k < near.offsets[i + 1]; ++k) {
+      const std::uint32_t j = near.partner[k];
+      const double distance = norm(p.position[i] - (p.position[j] + shifts[near.shift[k]]));
+      const double ti = p.target_radius[i], tj = p.target_radius[j];
+      allowed[i] = std::min(allowed[i], distance * ti / (ti + tj));
+      allowed[j] = std::min(allowed[j], distance * tj / (ti + tj));
+    }
+  double largest_deficit = 0.0;
+  for (std::size_t i = first; i < p.size(); ++i) {
+    p.radius[i] = std::max(allowed[i], 1e-3 * p.target_radius[i]);
+    largest_deficit = std::max(largest_deficit, p.target_radius[i] - p.radius[i]);
+  }
+  if (largest_deficit > 0.0)
+    s.expansion_rate = c.particles.expansion_time > 0.0 ? largest_deficit / c.particles.expansion_time
+                                                        : std::numeric_limits<double>::infinity();
+}
+
+void place_from_file(const CaseConfig& c, DemState& s) {
+  for (const auto& record : c.initial_particles) {
+    int sp = 0;
+    while (c.species[sp].name != record.species) ++sp;
+    const double diameter = record.diameter > 0.0 ? record.diameter : c.species[sp].diameter;
+    const Motion motion = c.species[sp].frozen ? Motion::frozen : Motion::free;
+    add_particle(s.particles, c.species[sp], sp, diameter, record.position, motion);
+    s.particles.velocity.back() = record.velocity;
+    s.particles.angular_velocity.back() = record.angular_velocity;
+  }
+}
+
+void thermalise(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
+  if (c.particles.initial_temperature <= 0.0) return;
+  ParticleStore& p = s.particles;
+  std::normal_distribution<double> gauss(0.0, std::sqrt(c.particles.initial_temperature));
+  Vec3 momentum;
+  double total_mass = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.motion[i] != Motion::free) continue;
+    p.velocity[i] = {gauss(rng), gauss(rng), gauss(rng)};
+    momentum += p.mass[i] * p.velocity[i];
+    total_mass += p.mass[i];
+  }
+  if (total_mass == 0.0) return;
+  const Vec3 drift = momentum * (1.0 / total_mass);  // no net momentum: T is all fluctuation
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.motion[i] == Motion::free) p.velocity[i] -= drift;
+}
+
+}  // namespace
+
+DemState build_dem_state(const CaseConfig& c) {
+  const DerivedQuantities d = derive(c);
+  DemState s;
+  s.box.lo = c.domain.lo;
+  s.box.hi = c.domain.hi;
+  for (int axis = 0; axis < 3; ++axis) s.box.periodic[axis] = c.domain.periodic(axis);
+  s.gravity = c.gravity;
+  s.time_step = d.time_step;
+  s.skin = d.skin;
+  s.species = c.species;
+  add_walls(c, s);
+  add_bumps(c, s);
+  std::mt19937_64 rng(c.particles.seed);
+  if (c.particles.init == "file") {
+    place_from_file(c, s);
+  } else if (c.particles.init == "lattice") {
+    place_lattice(c, s, rng, d.max_diameter);
+  } else {
+    place_random(c, s, rng);
+  }
+  thermalise(c, s, rng);
+  for (std::size_t i = 0; i < s.particles.size(); ++i) s.box.wrap(s.particles.position[i], s.particles.image[i]);
+  return s;
+}
+
+}  // namespace grainflow::dem

@@ -1,0 +1,158 @@
+#include "grainflow/dem/neighbor_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace grainflow::dem {
+
+void CellGrid::setup(const PeriodicBox& box, double cell_size) {
+  box_ = box;
+  for (int axis = 0; axis < 3; ++axis) {
+    cells_[axis] = std::max(1, static_cast<int>(std::floor(box.length(axis) / cell_size)));
+    // Cap the grid so a huge open box does not allocate absurd cell arrays.
+    cells_[axis] = std::min(cells_[axis], 1 << 12);
+    inv_size_[axis] = cells_[axis] / box.length(axis);
+  }
+}
+
+int CellGrid::cell_of(const Vec3& x) const {
+  int c[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    int k = static_cast<int>(std::floor((x[axis] - box_.lo[axis]) * inv_size_[axis]));
+    c[axis] = std::clamp(k, 0, cells_[axis] - 1);
+  }
+  return c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
+}
+
+void CellGrid::bin(const std::vector<Vec3>& position) {
+  const std::size_t n = position.size();
+  const std::size_t total = static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2];
+  start_.assign(total + 1, 0);
+  cell_index_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    cell_index_[i] = cell_of(position[i]);
+    ++start_[cell_index_[i] + 1];
+  }
+  for (std::size_t c = 0; c < total; ++c) start_[c + 1] += start_[c];
+  order_.resize(n);
+  std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) order_[fill[cell_index_[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, double skin, int threads,
+                           NeighborPairs& out) const {
+  const std::size_t n = p.size();
+  threads = std::max(1, threads);
+  std::vector<std::vector<std::uint32_t>> partners(threads), counts(threads);
+  std::vector<std::vector<std::uint8_t>> codes(threads);
+
+#pragma omp parallel num_threads(threads)
+  {
+#ifdef _OPENMP
+    const int t = omp_get_thread_num();
+#else
+    const int t = 0;
+#endif
+    const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+    auto& my_partners = partners[t];
+    auto& my_codes = codes[t];
+    auto& my_counts = counts[t];
+    my_counts.assign(end - begin, 0);
+    for (std::size_t i = begin; i < end; ++i) {
+      const int cell = cell_index_[i];
+      const int ci[3] = {cell % cells_[0], (cell / cells_[0]) % cells_[1], cell / (cells_[0] * cells_[1])};
+      const Vec3 xi = p.position[i];
+      const double ri = p.target_radius[i] + skin;
+      const std::uint32_t idi = p.id[i];
+      const std::size_t before = my_partners.size();
+      for (int dz = -1; dz <= 1; ++dz) {
+        int cz = ci[2] + dz, sz = 0;
+        if (cz < 0 || cz >= cells_[2]) {
+          if (!box.periodic[2]) continue;
+          sz = cz < 0 ? -1 : 1;
+          cz -= sz * cells_[2];
+        }
+        for (int dy = -1; dy <= 1; ++dy) {
+          int cy = ci[1] + dy, sy = 0;
+          if (cy < 0 || cy >= cells_[1]) {
+            if (!box.periodic[1]) continue;
+            sy = cy < 0 ? -1 : 1;
+            cy -= sy * cells_[1];
+          }
+          for (int dx = -1; dx <= 1; ++dx) {
+            int cx = ci[0] + dx, sx = 0;
+            if (cx < 0 || cx >= cells_[0]) {
+              if (!box.periodic[0]) continue;
+              sx = cx < 0 ? -1 : 1;
+              cx -= sx * cells_[0];
+            }
+            const Vec3 shift{sx * box.length(0), sy * box.length(1), sz * box.length(2)};
+            const std::uint8_t code = PeriodicBox::shift_code(sx, sy, sz);
+            const int neighbor = cx + cells_[0] * (cy + cells_[1] * cz);
+            for (std::uint32_t k = start_[neighbor]; k < start_[neighbor + 1]; ++k) {
+              const std::uint32_t j = order_[k];
+              if (p.id[j] <= idi || !pair_interacts(p, i, j)) continue;
+              const Vec3 d = xi - (p.position[j] + shift);
+              const double cutoff = ri + p.target_radius[j];
+              if (norm2(d) < cutoff * cutoff) {
+                my_partners.push_back(j);
+                my_codes.push_back(code);
+              }
+            }
+          }
+        }
+      }
+      my_counts[i - begin] = static_cast<std::uint32_t>(my_partners.size() - before);
+    }
+  }
+
+  out.offsets.assign(n + 1, 0);
+  std::size_t total = 0;
+  for (int t = 0; t < threads; ++t) total += partners[t].size();
+  out.partner.resize(total);
+  out.shift.resize(total);
+  std::size_t cursor = 0, i = 0;
+  for (int t = 0; t < threads; ++t) {
+    std::copy(partners[t].begin(), partners[t].end(), out.partner.begin() + cursor);
+    std::copy(codes[t].begin(), codes[t].end(), out.shift.begin() + cursor);
+    cursor += partners[t].size();
+    for (std::uint32_t c : counts[t]) {
+      out.offsets[i + 1] = out.offsets[i] + c;
+      ++i;
+    }
+  }
+}
+
+void build_pairs_all(const ParticleStore& p, const PeriodicBox& box, double skin, NeighborPairs& out) {
+  const std::size_t n = p.size();
+  out.offsets.assign(n + 1, 0);
+  out.partner.clear();
+  out.shift.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j) {
+      if (i == j || p.id[j] <= p.id[i] || !pair_interacts(p, i, j)) continue;
+      // Nearest image, and its shift code.
+      Vec3 d = p.position[i] - p.position[j];
+      int s[3] = {0, 0, 0};
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!box.periodic[axis]) continue;
+        const double L = box.length(axis);
+        const int k = static_cast<int>(std::nearbyint(d[axis] / L));
+        d[axis] -= k * L;
+        s[axis] = k;
+      }
+      const double cutoff = p.target_radius[i] + p.target_radius[j] + skin;
+      if (norm2(d) < cutoff * cutoff) {
+        out.partner.push_back(static_cast<std::uint32_t>(j));
+        out.shift.push_back(PeriodicBox::shift_code(s[0], s[1], s[2]));
+      }
+    }
+    out.offsets[i + 1] = static_cast<std::uint32_t>(out.partner.size());
+  }
+}
+
+}  // namespace grainflow::dem

@@ -1,0 +1,20 @@
+// Whole-system quantities at one instant: kinetic energies, granular temperature (fluctuation
+// about the mass-mean velocity) and the mass-centre height along the gravity axis.
+#pragma once
+
+#include "grainflow/particles/particle_store.hpp"
+
+namespace grainflow::observe {
+
+struct GlobalSample {
+  double kinetic_energy = 0.0;      // J, translational, moving particles
+  double rotational_energy = 0.0;   // J
+  double granular_temperature = 0.0;  // m^2/s^2, (1/3) <|v - <v>|^2>, mass weighted
+  double mass_center_height = 0.0;  // m, along the gravity axis
+  Vec3 momentum;                    // kg m/s
+  double mass = 0.0;                // kg of moving particles
+};
+
+GlobalSample sample_global(const ParticleStore& particles, int gravity_axis);
+
+}  // namespace grainflow::observe

@@ -1,0 +1,91 @@
+#include "grainflow/observe/zone_profile.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace grainflow::observe {
+
+double sphere_slab_volume(double r, double c, double a, double b) {
+  // Antiderivative of the disc area pi (r^2 - h^2) along the axis, h measured from the centre.
+  auto F = [r](double h) {
+    h = std::clamp(h, -r, r);
+    return M_PI * (r * r * h - h * h * h / 3.0);
+  };
+  return F(b - c) - F(a - c);
+}
+
+ZoneProfile::ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area)
+    : axis_(axis), lo_(lo), thickness_(thickness), zone_volume_(thickness * cross_section_area) {
+  const int zones = std::max(1, static_cast<int>(std::ceil((hi - lo) / thickness - 1e-9)));
+  sums_.resize(zones);
+  scratch_.resize(zones);
+}
+
+void ZoneProfile::sample(const ParticleStore& p) {
+  const int zones = static_cast<int>(sums_.size());
+  std::fill(scratch_.begin(), scratch_.end(), Sums{});
+  // Pass 1: partial volumes, mass and momentum per zone.
+  auto for_each_overlap = [&](std::size_t i, auto&& visit) {
+    const double r = p.radius[i];
+    const double c = p.position[i][axis_];
+    const int first = std::max(0, static_cast<int>(std::floor((c - r - lo_) / thickness_)));
+    const int last = std::min(zones - 1, static_cast<int>(std::floor((c + r - lo_) / thickness_)));
+    const double sphere = 4.0 / 3.0 * M_PI * r * r * r;
+    for (int z = first; z <= last; ++z) {
+      const double a = lo_ + z * thickness_;
+      const double part = sphere_slab_volume(r, c, a, a + thickness_);
+      if (part > 0.0) visit(z, part, part / sphere);
+    }
+  };
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.motion[i] != Motion::free) continue;
+    for_each_overlap(i, [&](int z, double part, double fraction) {
+      const double m = p.mass[i] * fraction;
+      scratch_[z].solid_volume += part;
+      scratch_[z].mass += m;
+      scratch_[z].momentum += m * p.velocity[i];
+    });
+  }
+  // Pass 2: fluctuations about the instantaneous zone mean, and second moments.
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.motion[i] != Motion::free) continue;
+    for_each_overlap(i, [&](int z, double, double fraction) {
+      const double m = p.mass[i] * fraction;
+      const Vec3 u = scratch_[z].momentum * (1.0 / scratch_[z].mass);
+      const Vec3 v = p.velocity[i];
+      const Vec3 dv = v - u;
+      scratch_[z].fluctuation_lan += Vec3{m * dv.x * dv.x, m * dv.y * dv.y, m * dv.z * dv.z};
+      scratch_[z].second_moment += Vec3{m * v.x * v.x, m * v.y * v.y, m * v.z * v.z};
+    });
+  }
+  for (int z = 0; z < zones; ++z) {
+    sums_[z].mass += scratch_[z].mass;
+    sums_[z].solid_volume += scratch_[z].solid_volume;
+    sums_[z].momentum += scratch_[z].momentum;
+    sums_[z].second_moment += scratch_[z].second_moment;
+    sums_[z].fluctuation_lan += scratch_[z].fluctuation_lan;
+  }
+  ++samples_;
+}
+
+std::vector<ZoneAverages> ZoneProfile::averages() const {
+  std::vector<ZoneAverages> out(sums_.size());
+  for (std::size_t z = 0; z < sums_.size(); ++z) {
+    ZoneAverages& a = out[z];
+    a.lo = lo_ + z * thickness_;
+    a.hi = a.lo + thickness_;
+    if (samples_ == 0) continue;
+    const Sums& s = sums_[z];
+    a.solids_fraction = s.solid_volume / (zone_volume_ * samples_);
+    a.mass = s.mass / samples_;
+    a.kinetic_energy_density = 0.5 * (s.second_moment.x + s.second_moment.y + s.second_moment.z) / (zone_volume_ * samples_);
+    if (s.mass <= 0.0) continue;
+    a.mean_velocity = s.momentum * (1.0 / s.mass);
+    a.temperature_lan = s.fluctuation_lan * (1.0 / s.mass);
+    for (int axis = 0; axis < 3; ++axis)
+      a.temperature_time_mean[axis] = std::max(0.0, s.second_moment[axis] / s.mass - a.mean_velocity[axis] * a.mean_velocity[axis]);
+  }
+  return out;
+}
+
+}  // namespace grainflow::observe
