@@ -46,7 +46,8 @@ class DemEngine {
     grid_.setup(s_.box, 2.0 * max_radius + s_.skin);
     for (auto& wall : s_.walls) wall.move_to(s_.time);
     rebuild(true);
-    compute_forces();
+    // The initial evaluation must not advance contact histories (no time has passed): dt = 0.
+    compute_forces(0.0);
   }
 
   DemState& state() { return s_; }
@@ -69,11 +70,12 @@ class DemEngine {
     move_walls();
     grow_radii();
     if (needs_rebuild()) rebuild(false);
-    compute_forces();
+    compute_forces(dt);
     half_kick();
   }
 
-  void compute_forces() {
+  // Forces and torques at the current positions; `history_dt` advances the contact histories.
+  void compute_forces(double history_dt) {
     ParticleStore& p = s_.particles;
     const std::size_t n = p.size();
     // Gravity, and zero for the non-moving.
@@ -82,8 +84,8 @@ class DemEngine {
       p.force[i] = p.motion[i] == Motion::free ? p.mass[i] * s_.gravity : Vec3{};
       p.torque[i] = Vec3{};
     }
-    pair_forces();
-    wall_forces();
+    pair_forces(history_dt);
+    wall_forces(history_dt);
   }
 
   // Positions with periodic crossings undone, for diffusion and outputs.
@@ -181,11 +183,10 @@ class DemEngine {
     ++stats_.rebuilds;
   }
 
-  void pair_forces() {
+  void pair_forces(double dt) {
     ParticleStore& p = s_.particles;
     const std::size_t n = p.size();
     const auto shifts = s_.box.shift_table();
-    const double dt = s_.time_step;
     const int threads = threads_;
     if (threads > 1) {
       thread_force_.resize(threads);
@@ -260,10 +261,9 @@ class DemEngine {
     stats_.contacts = contacts;
   }
 
-  void wall_forces() {
+  void wall_forces(double dt) {
     ParticleStore& p = s_.particles;
     const std::size_t n = p.size();
-    const double dt = s_.time_step;
     long wall_contacts = 0;
     double max_ratio = stats_.max_overlap_ratio;
     for (std::size_t w = 0; w < s_.walls.size(); ++w) {
