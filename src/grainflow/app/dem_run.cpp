@@ -157,10 +157,12 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     row.contacts = e.statistics().contacts;
     row.wall_contacts = e.statistics().wall_contacts;
     row.rebuilds = e.statistics().rebuilds;
-    max_overlap_seen = std::max(max_overlap_seen, row.max_overlap_ratio);
     e.statistics().max_overlap_ratio = 0.0;
     rows.push_back(row);
-    if (c.run.halt_overlap > 0.0 && row.max_overlap_ratio > c.run.halt_overlap) {
+    // Radius expansion (section 2.2) overlaps growing spheres on purpose: monitor only after it.
+    const bool expanding = st.expansion_rate > 0.0;
+    if (!expanding) max_overlap_seen = std::max(max_overlap_seen, row.max_overlap_ratio);
+    if (!expanding && c.run.halt_overlap > 0.0 && row.max_overlap_ratio > c.run.halt_overlap) {
       std::ostringstream message;
       message << "maximum overlap / diameter " << row.max_overlap_ratio << " exceeded run.halt_overlap = "
               << c.run.halt_overlap << " before t = " << st.time << " s; increase the stiffness (k1 = " << derived.k1

@@ -4,14 +4,10 @@
 #include <string>
 
 #include "grainflow/core/error.hpp"
+#include "grainflow/dem/bump_lattice.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 
 namespace grainflow {
-
-double max_bump_spacing(const std::string& lattice, double bump_radius, double free_radius) {
-  const double factor = lattice == "triangular" ? std::sqrt(3.0) : std::sqrt(2.0);
-  return factor * (bump_radius + free_radius);
-}
 
 namespace {
 
@@ -49,18 +45,20 @@ void validate_dem(const CaseConfig& c) {
   }
   for (int f = 0; f < 6; ++f) {
     if (c.domain.faces[f] != FaceKind::bumpy) continue;
-    const WallConfig& w = c.walls[f];
-    const double bump = w.bump_diameter > 0.0 ? w.bump_diameter : c.species.front().diameter;
-    const double spacing = w.spacing > 0.0 ? w.spacing : bump;
+    const dem::BumpLattice lattice = dem::bump_lattice(c, f);
     const std::string key = std::string("walls.") + kFaceNames[f] + ".spacing";
-    if (spacing < bump * (1.0 - 1e-12)) fail(c, key, "bumps would overlap: spacing must be at least bump_diameter");
+    if (lattice.closest_bumps() < lattice.bump_diameter * (1.0 - 1e-9))
+      fail(c, key, "bumps would overlap: the lattice (stretched to tile the face: " + std::to_string(lattice.columns) +
+                       " x " + std::to_string(lattice.rows) + ") puts bump centres " +
+                       std::to_string(lattice.closest_bumps()) + " m apart, less than bump_diameter");
     double smallest = 0.0;
     for (const auto& s : c.species)
       if (!s.frozen && (smallest == 0.0 || s.diameter < smallest)) smallest = s.diameter;
-    const double limit = max_bump_spacing(w.lattice, 0.5 * bump, 0.5 * smallest);
-    if (spacing >= limit)
-      fail(c, key, "spacing " + std::to_string(spacing) + " m lets a sphere of diameter " + std::to_string(smallest) +
-                       " m through the " + w.lattice + " lattice; it must be below " + std::to_string(limit) + " m");
+    if (lattice.largest_passing_diameter() >= smallest)
+      fail(c, key, "the " + std::string(lattice.triangular ? "triangular" : "square") + " lattice (" +
+                       std::to_string(lattice.columns) + " x " + std::to_string(lattice.rows) + " bumps) lets spheres up to " +
+                       std::to_string(lattice.largest_passing_diameter()) + " m through; the smallest species is " +
+                       std::to_string(smallest) + " m (reduce spacing or enlarge bump_diameter)");
   }
   // Particles must fit where they are placed.
   if (c.particles.init != "file") {

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "grainflow/core/error.hpp"
+#include "grainflow/dem/bump_lattice.hpp"
 #include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
@@ -55,37 +56,35 @@ void add_walls(const CaseConfig& c, DemState& s) {
 void add_bumps(const CaseConfig& c, DemState& s) {
   for (const FlatWall& wall : s.walls) {
     if (!wall.bumpy) continue;
-    const WallConfig& w = c.walls[wall.face];
-    const double bump = w.bump_diameter > 0.0 ? w.bump_diameter : c.species.front().diameter;
-    const double spacing = w.spacing > 0.0 ? w.spacing : bump;
+    const BumpLattice lattice = bump_lattice(c, wall.face);
     SpeciesConfig species;
     species.name = std::string("bump_") + kFaceNames[wall.face];
-    species.diameter = bump;
+    species.diameter = lattice.bump_diameter;
     species.density = c.species.front().density;
     species.frozen = true;
     const int species_index = static_cast<int>(s.species.size());
-    const int a = (wall.axis + 1) % 3, b = (wall.axis + 2) % 3;  // in-plane axes
-    const bool triangular = w.lattice == "triangular";
-    const double row = triangular ? spacing * std::sqrt(3.0) / 2.0 : spacing;
-    const int rows = std::max(1, static_cast<int>(std::floor(c.domain.length(b) / row + 1e-9)));
-    const int columns = std::max(1, static_cast<int>(std::floor(c.domain.length(a) / spacing + 1e-9)));
-    long count = 0;
-    for (int rb = 0; rb < rows; ++rb) {
-      const double offset = triangular && (rb % 2 == 1) ? 0.5 * spacing : 0.0;
-      for (int ca = 0; ca < columns; ++ca) {
+    const int a = lattice.axis_a, b = lattice.axis_b;
+    for (int row = 0; row < lattice.rows; ++row) {
+      const double offset = lattice.triangular && (row % 2 == 1) ? 0.5 * lattice.column_spacing : 0.0;
+      for (int column = 0; column < lattice.columns; ++column) {
         Vec3 x;
         x[wall.axis] = wall.position;
-        x[a] = c.domain.lo[a] + 0.5 * spacing + offset + ca * spacing;
-        x[b] = c.domain.lo[b] + 0.5 * row + rb * row;
+        x[a] = c.domain.lo[a] + (column + 0.5) * lattice.column_spacing + offset;
+        x[b] = c.domain.lo[b] + (row + 0.5) * lattice.row_spacing;
         if (x[a] >= c.domain.hi[a]) x[a] -= c.domain.length(a);
-        add_particle(s.particles, species, species_index, bump, x, Motion::wall_bump, wall.face);
+        add_particle(s.particles, species, species_index, lattice.bump_diameter, x, Motion::wall_bump, wall.face);
         s.particles.velocity.back() = wall.velocity;
-        ++count;
+        ++species.count;
       }
     }
-    species.count = count;
     s.species.push_back(species);
   }
+}
+
+// Extra distance from a bumpy face: its bumps stand out from the plane by their radius.
+double bump_clearance(const CaseConfig& c, int face) {
+  if (c.domain.faces[face] != FaceKind::bumpy) return 0.0;
+  return 0.5 * bump_lattice(c, face).bump_diameter;
 }
 
 Vec3 region_lo(const CaseConfig& c) { return c.particles.region_lo.value_or(c.domain.lo); }
@@ -135,9 +134,13 @@ void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
     Vec3 x;
     const double r = 0.5 * c.species[sp].diameter;
     for (int axis = 0; axis < 3; ++axis) {
-      // Keep centres at least a radius inside solid faces of the region.
-      const double margin = c.domain.periodic(axis) ? 0.0 : r;
-      x[axis] = lo[axis] + margin + unit(rng) * (hi[axis] - lo[axis] - 2.0 * margin);
+      // Keep centres at least a radius inside solid faces of the region (clear of the bumps).
+      double margin_lo = 0.0, margin_hi = 0.0;
+      if (!c.domain.periodic(axis)) {
+        margin_lo = r + bump_clearance(c, axis * 2);
+        margin_hi = r + bump_clearance(c, axis * 2 + 1);
+      }
+      x[axis] = lo[axis] + margin_lo + unit(rng) * (hi[axis] - lo[axis] - margin_lo - margin_hi);
     }
     add_particle(s.particles, c.species[sp], sp, c.species[sp].diameter, x,
                  c.species[sp].frozen ? Motion::frozen : Motion::free);
@@ -157,8 +160,14 @@ void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
       const std::uint32_t j = near.partner[k];
       const double distance = norm(p.position[i] - (p.position[j] + shifts[near.shift[k]]));
       const double ti = p.target_radius[i], tj = p.target_radius[j];
-      allowed[i] = std::min(allowed[i], distance * ti / (ti + tj));
-      allowed[j] = std::min(allowed[j], distance * tj / (ti + tj));
+      if (p.motion[i] != Motion::free) {
+        allowed[j] = std::min(allowed[j], distance - ti);  // a fixed partner does not shrink
+      } else if (p.motion[j] != Motion::free) {
+        allowed[i] = std::min(allowed[i], distance - tj);
+      } else {
+        allowed[i] = std::min(allowed[i], distance * ti / (ti + tj));
+        allowed[j] = std::min(allowed[j], distance * tj / (ti + tj));
+      }
     }
   double largest_deficit = 0.0;
   for (std::size_t i = first; i < p.size(); ++i) {
