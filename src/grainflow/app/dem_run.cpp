@@ -122,7 +122,12 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   double area = 1.0;
   for (int a = 0; a < 3; ++a)
     if (a != axis) area *= c.domain.length(a);
-  observe::ZoneProfile profile(axis, c.domain.lo[axis], c.domain.hi[axis], zone_thickness, area);
+  // Zones start at the floor's lowest reach, in whole zones below domain.lo, so that material under a
+  // floor shaken below its rest position is still counted.
+  double zones_lo = c.domain.lo[axis];
+  if (c.drive.enabled && c.drive.face == axis * 2)
+    zones_lo -= zone_thickness * std::ceil(c.drive.amplitude[axis] / zone_thickness - 1e-9);
+  observe::ZoneProfile profile(axis, zones_lo, c.domain.hi[axis], zone_thickness, area);
 
   const double dt = derived.time_step;
   const long total_steps = static_cast<long>(std::llround(c.run.duration / dt));

@@ -67,8 +67,8 @@ struct ContactConfig {
 };
 
 struct WallConfig {
-  double restitution = -1.0;  // < 0: the particles' value
-  double friction = -1.0;     // < 0: the particles' value
+  double restitution = -1.0;  // walton_braun; < 0: the particles' value (also for the bumps)
+  double friction = -1.0;     // < 0: the particles' value (also for the bumps)
   double gamma_n = -1.0;      // linear_dashpot walls; < 0: the particles' value
   Vec3 velocity;              // m/s, constant velocity of the wall (a drive adds to it)
   // bumpy walls: fixed half-spheres centred on the wall plane (section 2.6.3)
@@ -102,7 +102,7 @@ struct OutputConfig {
   double snapshot_interval = 0.0; // s between VTU snapshots (0 = none)
   double profile_interval = 0.0;  // s between profile samples (0 = interval / 10)
   double average_start = 0.0;     // s, long-term averages start here
-  double zone_thickness = 0.0;    // m, profile zones along gravity (0 = mean diameter)
+  double zone_thickness = 0.0;    // m, profile zones along gravity (0 = reference species diameter)
 };
 
 // One explicitly given particle (init = "file").

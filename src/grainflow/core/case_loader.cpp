@@ -163,6 +163,9 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
       if (!walls.has(kFaceNames[f])) continue;
       TomlReader r = walls.table(kFaceNames[f]);
       WallConfig& w = c.walls[f];
+      const bool linear = c.contact.model == "linear_dashpot";
+      if (linear && r.has("restitution")) r.fail("restitution", "linear_dashpot walls take gamma_n, not restitution");
+      if (!linear && r.has("gamma_n")) r.fail("gamma_n", "walton_braun walls take restitution, not gamma_n");
       w.restitution = r.number("restitution", -1.0);
       if (r.has("restitution") && !(w.restitution > 0.0 && w.restitution <= 1.0))
         r.fail("restitution", "must lie in (0, 1]");
@@ -272,6 +275,12 @@ void read_initial_particles(CaseConfig& c, const std::filesystem::path& base_dir
     if (species.count != 0)
       throw InputError(c.path, "species.count", "species '" + species.name + "': counts come from particles.file with init = \"file\"");
   }
+  // Bumps of bumpy faces are rebuilt from the case; a final_state.csv that lists them may be reused.
+  std::erase_if(c.initial_particles, [&](const InitialParticle& p) {
+    for (int f = 0; f < 6; ++f)
+      if (c.domain.faces[f] == FaceKind::bumpy && p.species == std::string("bump_") + kFaceNames[f]) return true;
+    return false;
+  });
   for (const auto& p : c.initial_particles) {
     auto it = std::find_if(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == p.species; });
     if (it == c.species.end())

@@ -107,6 +107,9 @@ void validate_dem(const CaseConfig& c) {
   if (c.output.snapshot_interval > 0.0 && c.output.snapshot_interval < d.time_step)
     fail(c, "output.snapshot_interval", "must be at least one time step");
   if (c.output.interval < d.time_step) fail(c, "output.interval", "must be at least one time step");
+  // A particle may then occupy at most three zones (Lan 1994 section 3.1).
+  if (c.output.zone_thickness > 0.0 && c.output.zone_thickness < 0.5 * d.max_diameter)
+    fail(c, "output.zone_thickness", "must be at least the radius of the largest particle");
   // Refuse sizes that would exhaust memory rather than start and fail hours later.
   constexpr long kMaxParticles = 200'000'000;
   if (d.moving_particles + d.frozen_particles > kMaxParticles)

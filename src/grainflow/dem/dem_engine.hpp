@@ -39,8 +39,12 @@ class DemEngine {
         threads_(std::max(1, threads)), sort_every_(sort_every) {
     contacts_.resize_walls(s_.walls.size(), s_.particles.size());
     bump_wall_.fill(-1);
-    for (std::size_t w = 0; w < s_.walls.size(); ++w)
-      if (s_.walls[w].bumpy && s_.walls[w].motion.moves()) bump_wall_[s_.walls[w].face] = static_cast<int>(w);
+    bump_params_.fill(pair_params_);
+    for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+      if (!s_.walls[w].bumpy) continue;
+      bump_params_[s_.walls[w].face] = wall_params_[w];  // bumps carry their wall's e and mu
+      if (s_.walls[w].motion.moves()) bump_wall_[s_.walls[w].face] = static_cast<int>(w);
+    }
     double max_radius = 0.0;
     for (double r : s_.particles.target_radius) max_radius = std::max(max_radius, r);
     grid_.setup(s_.box, 2.0 * max_radius + s_.skin);
@@ -236,7 +240,9 @@ class DemEngine {
           c.slip_velocity = relative - c.normal_velocity * c.normal -
                             cross(ri * p.angular_velocity[i] + rj * p.angular_velocity[j], c.normal);
           c.effective_mass = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
-          const ContactForce f = Law::force(pair_params_, contacts_.pair_state[k], c, dt);
+          const int bump_face = std::max(p.wall[i], p.wall[j]);  // -1 unless one is a wall bump
+          const Params& params = bump_face < 0 ? pair_params_ : bump_params_[bump_face];
+          const ContactForce f = Law::force(params, contacts_.pair_state[k], c, dt);
           const Vec3 total = f.normal * c.normal + f.tangential;
           const Vec3 arm = cross(c.normal, f.tangential);  // torque = -r n x F_t on both
           force[i] += total;
@@ -315,7 +321,8 @@ class DemEngine {
   ContactStore<State> contacts_;
   std::vector<Vec3> position_at_build_;
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
-  std::array<int, 6> bump_wall_{};  // wall carrying each face's bumps, -1 when they stand still
+  std::array<int, 6> bump_wall_{};
+  std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps  // wall carrying each face's bumps, -1 when they stand still
   ContactStatistics stats_;
 };
 

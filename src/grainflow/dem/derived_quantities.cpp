@@ -84,7 +84,6 @@ DerivedQuantities derive(const CaseConfig& c) {
     for (int axis = 0; axis < 3; ++axis) {
       const double v0 = c.drive.amplitude[axis] * 2.0 * M_PI * c.drive.frequency[axis];
       mean_sq += 0.5 * v0 * v0;
-      speed_sq = std::max(speed_sq, 0.0);
     }
     // Peak speed of the face: maximise |v(t)| over one period numerically (phases differ by axis).
     const double f_min = [&] {

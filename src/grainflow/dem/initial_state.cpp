@@ -123,8 +123,8 @@ void place_lattice(const CaseConfig& c, DemState& s, std::mt19937_64& rng, doubl
       }
 }
 
-// Random centres, then each radius shrunk to its share of the nearest-neighbor distance and to the
-// distance from solid faces; radii grow back at one constant rate over expansion_time (section 2.2).
+// Random centres (a radius clear of solid faces and bumps), then each radius shrunk to its share of
+// the nearest-neighbor distance; radii grow back at one constant rate over expansion_time (section 2.2).
 void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
   const Vec3 lo = region_lo(c), hi = region_hi(c);
   const auto sequence = species_sequence(c, rng);

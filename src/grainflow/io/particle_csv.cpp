@@ -31,7 +31,8 @@ std::vector<std::string_view> split(std::string_view line) {
 std::vector<InitialParticle> read_particle_csv(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "cannot open the particle file");
-  static const std::array<const char*, 11> known = {"species", "x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz", "diameter"};
+  // `id` is accepted (and ignored) so that a run's final_state.csv can start another run.
+  static const std::array<const char*, 12> known = {"id", "species", "x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz", "diameter"};
   std::map<std::string, int> column;  // name -> field index
   std::vector<InitialParticle> out;
   std::string line;

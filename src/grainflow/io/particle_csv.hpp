@@ -1,5 +1,5 @@
 // Reads explicit initial particles from CSV: a header row naming the columns species,x,y,z,vx,vy,vz
-// (required) and wx,wy,wz,diameter (optional); lines starting with '#' are comments.
+// (required) and wx,wy,wz,diameter,id (optional; id is ignored); lines starting with '#' are comments.
 #pragma once
 
 #include <string>

@@ -15,10 +15,14 @@ double sphere_slab_volume(double r, double c, double a, double b) {
 }
 
 ZoneProfile::ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area)
-    : axis_(axis), lo_(lo), thickness_(thickness), zone_volume_(thickness * cross_section_area) {
+    : axis_(axis), lo_(lo), thickness_(thickness) {
   const int zones = std::max(1, static_cast<int>(std::ceil((hi - lo) / thickness - 1e-9)));
   sums_.resize(zones);
   scratch_.resize(zones);
+  for (int z = 0; z < zones; ++z) {
+    const double top = std::min(hi, lo + (z + 1) * thickness);
+    zone_volume_.push_back((top - (lo + z * thickness)) * cross_section_area);
+  }
 }
 
 void ZoneProfile::sample(const ParticleStore& p) {
@@ -33,7 +37,7 @@ void ZoneProfile::sample(const ParticleStore& p) {
     const double sphere = 4.0 / 3.0 * M_PI * r * r * r;
     for (int z = first; z <= last; ++z) {
       const double a = lo_ + z * thickness_;
-      const double part = sphere_slab_volume(r, c, a, a + thickness_);
+      const double part = sphere_slab_volume(r, c, a, a + zone_volume_[z] / zone_volume_[0] * thickness_);
       if (part > 0.0) visit(z, part, part / sphere);
     }
   };
@@ -73,12 +77,13 @@ std::vector<ZoneAverages> ZoneProfile::averages() const {
   for (std::size_t z = 0; z < sums_.size(); ++z) {
     ZoneAverages& a = out[z];
     a.lo = lo_ + z * thickness_;
-    a.hi = a.lo + thickness_;
+    a.hi = a.lo + thickness_ * zone_volume_[z] / zone_volume_[0];
     if (samples_ == 0) continue;
     const Sums& s = sums_[z];
-    a.solids_fraction = s.solid_volume / (zone_volume_ * samples_);
+    a.solids_fraction = s.solid_volume / (zone_volume_[z] * samples_);
     a.mass = s.mass / samples_;
-    a.kinetic_energy_density = 0.5 * (s.second_moment.x + s.second_moment.y + s.second_moment.z) / (zone_volume_ * samples_);
+    a.kinetic_energy_density =
+        0.5 * (s.fluctuation_lan.x + s.fluctuation_lan.y + s.fluctuation_lan.z) / (zone_volume_[z] * samples_);
     if (s.mass <= 0.0) continue;
     a.mean_velocity = s.momentum * (1.0 / s.mass);
     a.temperature_lan = s.fluctuation_lan * (1.0 / s.mass);

@@ -21,12 +21,13 @@ struct ZoneAverages {
   Vec3 mean_velocity;                   // m/s
   Vec3 temperature_lan;                 // m^2/s^2 per component
   Vec3 temperature_time_mean;           // m^2/s^2 per component
-  double kinetic_energy_density = 0.0;  // J/m^3, including the mean motion
+  double kinetic_energy_density = 0.0;  // J/m^3 of fluctuations about the zone mean (eq. 3-1-10)
   double mass = 0.0;                    // kg, mean over samples
 };
 
 class ZoneProfile {
  public:
+  // Zones of `thickness` from `lo` up to `hi` (the last one possibly thinner).
   ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area);
   void sample(const ParticleStore& particles);  // one instantaneous sample, accumulated
   std::vector<ZoneAverages> averages() const;
@@ -39,7 +40,8 @@ class ZoneProfile {
     Vec3 momentum, second_moment, fluctuation_lan;  // sum m v, sum m v^2, sum m (v - u_inst)^2
   };
   int axis_;
-  double lo_, thickness_, zone_volume_;
+  double lo_, thickness_;
+  std::vector<double> zone_volume_;  // m^3; the top zone may be cut by the domain's upper bound
   std::vector<Sums> sums_;
   std::vector<Sums> scratch_;
   long samples_ = 0;
