@@ -37,7 +37,7 @@ struct LinearDashpot {
     const double ft_magnitude = norm(ft);
     const double limit = p.friction * std::fabs(out.normal);
     if (ft_magnitude > limit) {
-      // Sliding: rescale the stored displacement so the spring alone sits on the Coulomb limit.
+      // Sliding: rescale the stored displacement so spring plus dashpot sit on the Coulomb limit.
       if (norm2(s.shear) != 0.0) {
         const double ratio = limit / ft_magnitude;
         const Vec3 damping_displacement = damping * (1.0 / p.kt);
