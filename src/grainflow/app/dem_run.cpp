@@ -81,6 +81,29 @@ void write_final_state(const std::string& path, const ParticleStore& p, const st
   });
 }
 
+// The steps at which something recurring every `interval` seconds happens: the step nearest to each
+// k * interval (k = 1, 2, ...), so output times stay on the requested grid and the last one (at the
+// end of a run whose duration is a multiple of the interval) is not lost. A fixed step count,
+// round(interval / dt), drifts by up to dt/2 per interval and can skip the final output.
+class Schedule {
+ public:
+  Schedule(double interval, double dt) : interval_(interval), dt_(dt) { advance(); }
+  // True once per interval, at the first step at or after the next scheduled one.
+  bool due(long step) {
+    if (interval_ <= 0.0 || step < next_) return false;
+    advance();
+    return true;
+  }
+
+ private:
+  void advance() {
+    ++k_;
+    next_ = std::max(next_ + 1, static_cast<long>(std::llround(k_ * interval_ / dt_)));
+  }
+  double interval_, dt_;
+  long k_ = 0, next_ = 0;
+};
+
 class Progress {
  public:
   Progress(bool enabled, double duration) : enabled_(enabled), duration_(duration), start_(clock::now()), last_(start_) {}
@@ -131,11 +154,10 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
 
   const double dt = derived.time_step;
   const long total_steps = static_cast<long>(std::llround(c.run.duration / dt));
-  const long output_every = std::max(1L, static_cast<long>(std::llround(c.output.interval / dt)));
+  Schedule output_schedule(c.output.interval, dt);
   const double profile_interval = c.output.profile_interval > 0.0 ? c.output.profile_interval : c.output.interval / 10.0;
-  const long profile_every = std::max(1L, static_cast<long>(std::llround(profile_interval / dt)));
-  const long snapshot_every =
-      c.output.snapshot_interval > 0.0 ? std::max(1L, static_cast<long>(std::llround(c.output.snapshot_interval / dt))) : 0;
+  Schedule profile_schedule(profile_interval, dt);
+  Schedule snapshot_schedule(c.output.snapshot_interval, dt);
   const long average_from = static_cast<long>(std::ceil(c.output.average_start / dt - 1e-9));
 
   std::vector<TimeseriesRow> rows;
@@ -183,8 +205,8 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
           if (snapshots) snapshots->add(e.state().particles, e.state().time);
           for (long step = 1; step <= total_steps; ++step) {
             e.step();
-            if (step >= average_from && step % profile_every == 0) profile.sample(e.state().particles);
-            if (step % output_every == 0) {
+            if (profile_schedule.due(step) && step >= average_from) profile.sample(e.state().particles);
+            if (output_schedule.due(step)) {
               record(e);
               progress.update(e.state().time);
               const auto now = std::chrono::steady_clock::now();
@@ -193,7 +215,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
                 last_flush = now;
               }
             }
-            if (snapshot_every && step % snapshot_every == 0) snapshots->add(e.state().particles, e.state().time);
+            if (snapshot_schedule.due(step) && snapshots) snapshots->add(e.state().particles, e.state().time);
           }
         },
         engine);

@@ -15,7 +15,7 @@ double sphere_slab_volume(double r, double c, double a, double b) {
 }
 
 ZoneProfile::ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area)
-    : axis_(axis), lo_(lo), thickness_(thickness) {
+    : axis_(axis), lo_(lo), hi_(hi), thickness_(thickness) {
   const int zones = std::max(1, static_cast<int>(std::ceil((hi - lo) / thickness - 1e-9)));
   sums_.resize(zones);
   scratch_.resize(zones);
@@ -37,7 +37,7 @@ void ZoneProfile::sample(const ParticleStore& p) {
     const double sphere = 4.0 / 3.0 * M_PI * r * r * r;
     for (int z = first; z <= last; ++z) {
       const double a = lo_ + z * thickness_;
-      const double part = sphere_slab_volume(r, c, a, a + zone_volume_[z] / zone_volume_[0] * thickness_);
+      const double part = sphere_slab_volume(r, c, a, std::min(hi_, a + thickness_));
       if (part > 0.0) visit(z, part, part / sphere);
     }
   };
@@ -77,7 +77,7 @@ std::vector<ZoneAverages> ZoneProfile::averages() const {
   for (std::size_t z = 0; z < sums_.size(); ++z) {
     ZoneAverages& a = out[z];
     a.lo = lo_ + z * thickness_;
-    a.hi = a.lo + thickness_ * zone_volume_[z] / zone_volume_[0];
+    a.hi = std::min(hi_, a.lo + thickness_);
     if (samples_ == 0) continue;
     const Sums& s = sums_[z];
     a.solids_fraction = s.solid_volume / (zone_volume_[z] * samples_);

@@ -40,7 +40,7 @@ class ZoneProfile {
     Vec3 momentum, second_moment, fluctuation_lan;  // sum m v, sum m v^2, sum m (v - u_inst)^2
   };
   int axis_;
-  double lo_, thickness_;
+  double lo_, hi_, thickness_;  // m; the last zone ends at hi_
   std::vector<double> zone_volume_;  // m^3; the top zone may be cut by the domain's upper bound
   std::vector<Sums> sums_;
   std::vector<Sums> scratch_;

@@ -1,0 +1,215 @@
+// Zone profiles (Lan 1994 Fig. 3.1, eqs. 3-1-5, 3-1-9): exact sphere-slab partial volumes, solids
+// fraction of known packings, mass-weighted mean velocity, and the two granular temperatures:
+// about the instantaneous zone mean (Lan) and about the long-term zone mean (Campbell).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "grainflow/observe/zone_profile.hpp"
+
+using namespace grainflow;
+using namespace grainflow::observe;
+
+namespace {
+
+double sphere_volume(double r) { return 4.0 / 3.0 * M_PI * r * r * r; }
+// Spherical cap of height h (0 <= h <= 2r): pi h^2 (3r - h) / 3.
+double cap_volume(double r, double h) { return M_PI * h * h * (3.0 * r - h) / 3.0; }
+
+void add(ParticleStore& p, Vec3 x, double r, double density, Vec3 v, Motion motion = Motion::free) {
+  const std::size_t i = p.size();
+  p.resize(i + 1);
+  p.position[i] = x;
+  p.radius[i] = p.target_radius[i] = r;
+  p.mass[i] = density * sphere_volume(r);
+  p.inv_mass[i] = motion == Motion::free ? 1.0 / p.mass[i] : 0.0;
+  p.velocity[i] = v;
+  p.id[i] = static_cast<std::uint32_t>(i);
+  p.motion[i] = motion;
+}
+
+}  // namespace
+
+TEST(SphereSlabVolume, SlabsPartitioningTheSphereSumToItsVolume) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double r = 0.001 + 0.01 * u(rng), c = -0.05 + 0.1 * u(rng);
+    const double thickness = (0.05 + 3.0 * u(rng)) * r, lo = c - r - thickness * (0.01 + 2.0 * u(rng));
+    double sum = 0.0;
+    for (double a = lo; a < c + r + thickness; a += thickness) sum += sphere_slab_volume(r, c, a, a + thickness);
+    EXPECT_NEAR(sum, sphere_volume(r), 1e-12 * sphere_volume(r)) << "r = " << r << " slab " << thickness;
+  }
+}
+
+TEST(SphereSlabVolume, MatchesSphericalCaps) {
+  const double r = 0.003, c = 0.1;
+  for (double h : {0.0, 1e-5, 0.0007, 0.003, 0.0041, 0.006}) {
+    // Cap at the top: the slab [c + r - h, far above].
+    EXPECT_NEAR(sphere_slab_volume(r, c, c + r - h, c + 1.0), cap_volume(r, h), 1e-15 + 1e-12 * cap_volume(r, h)) << h;
+    // Cap at the bottom: the slab [far below, c - r + h].
+    EXPECT_NEAR(sphere_slab_volume(r, c, c - 1.0, c - r + h), cap_volume(r, h), 1e-15 + 1e-12 * cap_volume(r, h)) << h;
+  }
+  // A slab of the sphere's middle: sphere minus two caps.
+  EXPECT_NEAR(sphere_slab_volume(r, c, c - 0.001, c + 0.002),
+              sphere_volume(r) - cap_volume(r, r - 0.001) - cap_volume(r, r - 0.002), 1e-18);
+  // Outside (touching planes: zero up to the round-off of c + r - c, relative 1e-16 of the sphere),
+  // and a thin slice at the equator: pi r^2 dz.
+  EXPECT_NEAR(sphere_slab_volume(r, c, c + r, c + 2.0 * r), 0.0, 1e-13 * sphere_volume(r));
+  EXPECT_NEAR(sphere_slab_volume(r, c, c - 3.0 * r, c - r), 0.0, 1e-13 * sphere_volume(r));
+  EXPECT_NEAR(sphere_slab_volume(r, c, c + 1.1 * r, c + 2.0 * r), 0.0, 1e-13 * sphere_volume(r));
+  EXPECT_NEAR(sphere_slab_volume(r, c, c - 1e-7, c + 1e-7), M_PI * r * r * 2e-7, 1e-6 * M_PI * r * r * 2e-7);
+}
+
+// Simple cubic packing of spheres of diameter d at spacing s: solids fraction (pi/6) (d/s)^3 in
+// every zone of thickness s, whether the zones are aligned with the layers (each zone holds one
+// layer) or shifted by half a spacing (each zone holds halves of two layers), and exactly by the
+// partial volumes when the zone is thinner than a layer.
+TEST(ZoneProfile, SolidsFractionOfSimpleCubicLattice) {
+  const double d = 0.003, s = 0.0033;
+  const int n = 4, layers = 6;
+  const double expected = M_PI / 6.0 * std::pow(d / s, 3);
+  ParticleStore p;
+  for (int ix = 0; ix < n; ++ix)
+    for (int iz = 0; iz < n; ++iz)
+      for (int iy = 0; iy < layers; ++iy) add(p, {(ix + 0.5) * s, (iy + 0.5) * s, (iz + 0.5) * s}, 0.5 * d, 2500.0, {});
+  // A fixed particle (a bump) is no part of the bed.
+  add(p, {0.5 * s, 2.5 * s, 0.5 * s}, 0.5 * d, 2500.0, {}, Motion::wall_bump);
+  const double area = (n * s) * (n * s);
+
+  ZoneProfile aligned(1, 0.0, layers * s, s, area);
+  aligned.sample(p);
+  aligned.sample(p);
+  const auto zones = aligned.averages();
+  ASSERT_EQ(zones.size(), static_cast<std::size_t>(layers));
+  for (const auto& z : zones) EXPECT_NEAR(z.solids_fraction, expected, 1e-12) << "zone at " << z.lo;
+
+  ZoneProfile shifted(1, 0.5 * s, (layers - 0.5) * s, s, area);
+  shifted.sample(p);
+  for (const auto& z : shifted.averages()) EXPECT_NEAR(z.solids_fraction, expected, 1e-12) << "zone at " << z.lo;
+
+  // Zones of a third of a spacing centred on a layer: the middle one holds the equatorial slice
+  // [-s/6, s/6] of every sphere, the outer ones [s/6, s/2] (the caps beyond d/2 = 0.4545 s are cut).
+  ZoneProfile thin(1, 2.0 * s, 3.0 * s, s / 3.0, area);
+  thin.sample(p);
+  const auto t = thin.averages();
+  ASSERT_EQ(t.size(), 3u);
+  const double r = 0.5 * d, zone_volume = area * s / 3.0;
+  const double middle = n * n * sphere_slab_volume(r, 0.0, -s / 6.0, s / 6.0) / zone_volume;
+  const double outer = n * n * sphere_slab_volume(r, 0.0, s / 6.0, s / 2.0) / zone_volume;
+  EXPECT_NEAR(t[1].solids_fraction, middle, 1e-12);
+  EXPECT_NEAR(t[0].solids_fraction, outer, 1e-12);
+  EXPECT_NEAR(t[2].solids_fraction, outer, 1e-12);
+  // Mass in a zone: the moving spheres' share.
+  EXPECT_NEAR(zones[0].mass, n * n * 2500.0 * sphere_volume(r), 1e-12);
+}
+
+// Two samples of two spheres in one zone, masses m and 3m (radii in ratio 3^(1/3)), velocities
+// chosen so that the instantaneous zone means (+2 and -2 on x) cancel in the long run:
+//   sample 1: v_a = (1, 1, 0), v_b = (3, 1, 0);  sample 2: v_a = (-1, 1, 0), v_b = (-3, 1, 0)
+// (the y velocities are a steady drift, the z ones zero). Per sample the mass-weighted mean on x is
+// (m + 9m) / 4m = 2.5 and -2.5; long-term mean 0, y mean 1.
+//   temperature_lan (about the instantaneous mean): x: [m (1.5)^2 + 3m (0.5)^2] / 4m = 0.75 per
+//   sample, so 0.75; y, z: 0.
+//   temperature_time_mean (about the long-term mean): x: [m 1 + 3m 9] 2 / 8m = 7; y, z: 0.
+// They differ by the variance of the instantaneous mean, 2.5^2 = 6.25, as they must.
+TEST(ZoneProfile, MeanVelocityAndBothTemperatures) {
+  const double r_a = 0.001, r_b = 0.001 * std::cbrt(3.0), rho = 1000.0;
+  const double m = rho * sphere_volume(r_a);
+  ParticleStore p;
+  add(p, {0.005, 0.005, 0.005}, r_a, rho, {1.0, 1.0, 0.0});
+  add(p, {0.012, 0.005, 0.011}, r_b, rho, {3.0, 1.0, 0.0});
+  const double area = 0.02 * 0.02, thickness = 0.01;
+  ZoneProfile profile(1, 0.0, 0.01, thickness, area);
+  profile.sample(p);
+  p.velocity[0] = {-1.0, 1.0, 0.0};
+  p.velocity[1] = {-3.0, 1.0, 0.0};
+  profile.sample(p);
+  EXPECT_EQ(profile.samples(), 2);
+  const auto zones = profile.averages();
+  ASSERT_EQ(zones.size(), 1u);
+  const ZoneAverages& z = zones[0];
+  EXPECT_NEAR(z.mass, 4.0 * m, 1e-15);
+  EXPECT_NEAR(z.mean_velocity.x, 0.0, 1e-12);
+  EXPECT_NEAR(z.mean_velocity.y, 1.0, 1e-12);
+  EXPECT_NEAR(z.mean_velocity.z, 0.0, 1e-12);
+  EXPECT_NEAR(z.temperature_lan.x, 0.75, 1e-12);
+  EXPECT_NEAR(z.temperature_lan.y, 0.0, 1e-12);
+  EXPECT_NEAR(z.temperature_lan.z, 0.0, 1e-12);
+  EXPECT_NEAR(z.temperature_time_mean.x, 7.0, 1e-12);
+  EXPECT_NEAR(z.temperature_time_mean.y, 0.0, 1e-12);
+  EXPECT_NEAR(z.temperature_time_mean.x - z.temperature_lan.x, 2.5 * 2.5, 1e-12);
+  // Kinetic energy density of the fluctuations about the instantaneous zone mean (Lan eq. 3-1-10):
+  // (1/2) sum m |v - u|^2 / V, the same in both samples: (1/2) (m 1.5^2 + 3m 0.5^2) / V = 1.5 m / V.
+  EXPECT_NEAR(z.kinetic_energy_density, 1.5 * m / (area * thickness), 1e-12 * m / (area * thickness));
+  EXPECT_NEAR(z.solids_fraction, 4.0 * sphere_volume(r_a) / (area * thickness), 1e-12);
+}
+
+// A sphere cut by a zone boundary counts in both zones with its volume shares: centred on the
+// boundary, half its mass and momentum in each. Zone 0 also holds a resting sphere, so its mean
+// velocity is the mass-weighted (m v / 2 + m 0) / (3m / 2) = v / 3, and the moving sphere's
+// fluctuation about that mean gives Lan's temperature [m/2 (2v/3)^2 + m (v/3)^2] / (3m/2) = 2 v^2 / 9.
+TEST(ZoneProfile, SphereOnAZoneBoundaryIsSharedByVolume) {
+  const double r = 0.001, rho = 1000.0, v = 0.6;
+  ParticleStore p;
+  add(p, {0.005, 0.004, 0.005}, r, rho, {v, 0.0, 0.0});   // on the boundary y = 0.004
+  add(p, {0.005, 0.0015, 0.005}, r, rho, {0.0, 0.0, 0.0});  // inside zone 0 [0, 0.004)
+  ZoneProfile profile(1, 0.0, 0.008, 0.004, 0.01 * 0.01);
+  profile.sample(p);
+  const auto zones = profile.averages();
+  ASSERT_EQ(zones.size(), 2u);
+  const double m = rho * sphere_volume(r);
+  EXPECT_NEAR(zones[0].mass, 1.5 * m, 1e-15);
+  EXPECT_NEAR(zones[1].mass, 0.5 * m, 1e-15);
+  EXPECT_NEAR(zones[0].mean_velocity.x, v / 3.0, 1e-12);
+  EXPECT_NEAR(zones[1].mean_velocity.x, v, 1e-12);
+  EXPECT_NEAR(zones[0].temperature_lan.x, 2.0 * v * v / 9.0, 1e-12);
+  EXPECT_NEAR(zones[1].temperature_lan.x, 0.0, 1e-12);
+  // With one sample both temperatures coincide.
+  EXPECT_NEAR(zones[0].temperature_time_mean.x, zones[0].temperature_lan.x, 1e-12);
+}
+
+// The last zone is cut by `hi` when the span is not a whole number of zones: its bounds, volume and
+// partial volumes are those of the cut slab. A simple cubic lattice (spacing s, layers centred at
+// (k + 1/2) s) in zones of thickness s from 0 to 2.4 s: the third zone [2 s, 2.4 s] holds the slice
+// [-s/2, -0.1 s] of the third layer's spheres. Also with a single zone thinner than its thickness.
+TEST(ZoneProfile, TopZoneCutByTheUpperBound) {
+  const double d = 0.003, s = 0.0033, r = 0.5 * d, rho = 2500.0;
+  const int n = 3;
+  ParticleStore p;
+  for (int ix = 0; ix < n; ++ix)
+    for (int iz = 0; iz < n; ++iz)
+      for (int iy = 0; iy < 3; ++iy) add(p, {(ix + 0.5) * s, (iy + 0.5) * s, (iz + 0.5) * s}, r, rho, {});
+  const double area = (n * s) * (n * s);
+  ZoneProfile profile(1, 0.0, 2.4 * s, s, area);
+  profile.sample(p);
+  const auto zones = profile.averages();
+  ASSERT_EQ(zones.size(), 3u);
+  EXPECT_NEAR(zones[2].lo, 2.0 * s, 1e-15);
+  EXPECT_NEAR(zones[2].hi, 2.4 * s, 1e-15);
+  const double slice = n * n * sphere_slab_volume(r, 0.0, -0.5 * s, -0.1 * s);
+  EXPECT_NEAR(zones[2].solids_fraction, slice / (area * 0.4 * s), 1e-12);
+  EXPECT_NEAR(zones[0].solids_fraction, M_PI / 6.0 * std::pow(d / s, 3), 1e-12);
+  EXPECT_NEAR(zones[2].mass, rho * slice, 1e-12 * rho * slice);
+
+  ZoneProfile single(1, 0.0, 0.4 * s, s, area);  // [0, 0.4 s]: the slice [-s/2, -0.1 s] of layer 0
+  single.sample(p);
+  const auto one = single.averages();
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_NEAR(one[0].hi, 0.4 * s, 1e-15);
+  EXPECT_NEAR(one[0].solids_fraction, slice / (area * 0.4 * s), 1e-12);
+}
+
+// Along another axis (a chute with gravity along x, say): the profile uses that axis.
+TEST(ZoneProfile, WorksAlongAnyAxis) {
+  ParticleStore p;
+  add(p, {0.0025, 0.3, -0.7}, 0.001, 1000.0, {0.0, 0.0, 2.0});
+  ZoneProfile profile(0, 0.0, 0.005, 0.005, 1.0);
+  profile.sample(p);
+  const auto zones = profile.averages();
+  ASSERT_EQ(zones.size(), 1u);
+  EXPECT_NEAR(zones[0].solids_fraction, sphere_volume(0.001) / 0.005, 1e-15);
+  EXPECT_NEAR(zones[0].mean_velocity.z, 2.0, 1e-12);
+}
