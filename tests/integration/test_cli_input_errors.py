@@ -9,24 +9,12 @@ Usage: /usr/bin/python3 tests/integration/test_cli_input_errors.py PATH_TO_grain
 import math
 import os
 import re
-import subprocess
 import sys
 import tempfile
 import tomllib
 
-FAILURES = []
-
-
-def check(condition, message):
-    if not condition:
-        FAILURES.append(message)
-        print("FAIL: " + message, file=sys.stderr)
-
-
-def run(exe, *args, cwd=None):
-    result = subprocess.run([exe, *args], capture_output=True, text=True, timeout=120, cwd=cwd)
-    return result.returncode, result.stdout, result.stderr
-
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gftest import check, executable_from_argv, finish, run, write_text  # noqa: E402
 
 # A valid case: 20 glass spheres (d = 3 mm) in a periodic box with a floor. Each bad case breaks one key.
 VALID = """[engine]
@@ -70,18 +58,15 @@ BAD_CASES = [
 
 
 def main():
-    if len(sys.argv) != 2:
-        print(__doc__, file=sys.stderr)
+    exe = executable_from_argv(__doc__)
+    if exe is None:
         return 2
-    exe = os.path.abspath(sys.argv[1])
     check(os.access(exe, os.X_OK), f"{exe} is not an executable")
     os.chdir(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))))  # the repo root
 
     with tempfile.TemporaryDirectory(prefix="grainflow_cli_") as tmp:
         # The valid case runs (sanity: the bad cases fail for their one broken key, not for the rest).
-        valid_path = os.path.join(tmp, "valid.toml")
-        with open(valid_path, "w") as f:
-            f.write(VALID)
+        valid_path = write_text(os.path.join(tmp, "valid.toml"), VALID)
         status, _, err = run(exe, "check", valid_path)
         check(status == 0, f"check of the valid case exited {status}: {err.strip()}")
         status, _, err = run(exe, "run", valid_path, "-o", os.path.join(tmp, "valid_out"), "--quiet")
@@ -89,9 +74,7 @@ def main():
         check(os.path.isfile(os.path.join(tmp, "valid_out", "summary.json")), "the valid run wrote no summary.json")
 
         for name, text, key, reason in BAD_CASES:
-            path = os.path.join(tmp, name + ".toml")
-            with open(path, "w") as f:
-                f.write(text)
+            path = write_text(os.path.join(tmp, name + ".toml"), text)
             for command in ("run", "check"):
                 out_dir = os.path.join(tmp, "out_" + name)
                 args = [command, path] + (["-o", out_dir] if command == "run" else [])
@@ -104,9 +87,7 @@ def main():
 
         # Without -o the default folder is runs/<case name> under the working directory: not created either.
         default_name = f"bad_default_{os.getpid()}"
-        path = os.path.join(tmp, default_name + ".toml")
-        with open(path, "w") as f:
-            f.write(BAD_CASES[0][1])
+        path = write_text(os.path.join(tmp, default_name + ".toml"), BAD_CASES[0][1])
         status, _, _ = run(exe, "run", path, cwd=tmp)
         check(status == 2, f"bad case without -o exited {status}, expected 2")
         check(not os.path.exists(os.path.join(tmp, "runs", default_name)), "a bad case created runs/<case name>")
@@ -115,9 +96,7 @@ def main():
         # TOML syntax error: the message names the file and the line of "k1 = = 1.0e6".
         broken = VALID.replace("k1 = 1.0e6", "k1 = = 1.0e6")
         line = broken[: broken.index("k1 = =")].count("\n") + 1
-        path = os.path.join(tmp, "syntax.toml")
-        with open(path, "w") as f:
-            f.write(broken)
+        path = write_text(os.path.join(tmp, "syntax.toml"), broken)
         out_dir = os.path.join(tmp, "out_syntax")
         status, _, err = run(exe, "run", path, "-o", out_dir)
         check(status == 2, f"syntax error: exited {status}, expected 2")
@@ -185,11 +164,7 @@ def main():
             # printed with 6 significant digits: 1e-5 relative covers its rounding
             check(abs(printed - value) <= 1e-5 * abs(value), f"check prints {label} = {printed}, expected {value:.6g}")
 
-    if FAILURES:
-        print(f"{len(FAILURES)} check(s) failed", file=sys.stderr)
-        return 1
-    print("test_cli_input_errors: all checks passed")
-    return 0
+    return finish("test_cli_input_errors")
 
 
 if __name__ == "__main__":

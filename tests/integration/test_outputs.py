@@ -10,10 +10,12 @@ import csv
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 import xml.etree.ElementTree as ET
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gftest import check, executable_from_argv, finish, read_csv, run, write_text  # noqa: E402
 
 SNAPSHOT_INTERVAL = 0.01  # s
 DURATION = 0.05           # s
@@ -55,16 +57,6 @@ duration = {DURATION}
 interval = 0.005
 snapshot_interval = {SNAPSHOT_INTERVAL}
 """
-
-FAILURES = []
-
-
-def check(condition, message):
-    if not condition:
-        FAILURES.append(message)
-        print("FAIL: " + message, file=sys.stderr)
-    return condition
-
 
 def values_of(array):
     return (array.text or "").split()
@@ -108,17 +100,14 @@ def check_vtu(path, time):
 
 
 def main():
-    if len(sys.argv) != 2:
-        print(__doc__, file=sys.stderr)
+    exe = executable_from_argv(__doc__)
+    if exe is None:
         return 2
-    exe = os.path.abspath(sys.argv[1])
     with tempfile.TemporaryDirectory(prefix="grainflow_outputs_") as tmp:
-        case_path = os.path.join(tmp, "outputs.toml")
-        with open(case_path, "w") as f:
-            f.write(CASE)
+        case_path = write_text(os.path.join(tmp, "outputs.toml"), CASE)
         out = os.path.join(tmp, "out")
-        result = subprocess.run([exe, "run", case_path, "-o", out, "--quiet"], capture_output=True, text=True, timeout=300)
-        if not check(result.returncode == 0, f"run exited {result.returncode}: {result.stderr.strip()}"):
+        status, _, err = run(exe, "run", case_path, "-o", out, "--quiet", timeout=300)
+        if not check(status == 0, f"run exited {status}: {err.strip()}"):
             return 1
 
         # --- summary.json
@@ -191,17 +180,11 @@ def main():
 
         # --- the other files exist and parse; no temporary files anywhere.
         for name in ("timeseries.csv", "profiles.csv"):
-            with open(os.path.join(out, name)) as f:
-                table = list(csv.DictReader(line for line in f if not line.startswith("#")))
-            check(len(table) > 0, f"{name} has no rows")
+            check(len(read_csv(os.path.join(out, name))) > 0, f"{name} has no rows")
         leftovers = [os.path.join(d, f) for d, _, fs in os.walk(out) for f in fs if ".tmp-" in f]
         check(not leftovers, f"temporary files left behind: {leftovers}")
 
-    if FAILURES:
-        print(f"{len(FAILURES)} check(s) failed", file=sys.stderr)
-        return 1
-    print("test_outputs: all checks passed")
-    return 0
+    return finish("test_outputs")
 
 
 if __name__ == "__main__":

@@ -16,14 +16,15 @@ Pouring until 0.5 s, amplitude ramp over 1 s, averages from 3 s. About 15 s of w
 
 Usage: /usr/bin/python3 tests/integration/test_vibrated_bed.py PATH_TO_grainflow  (from the repo root)
 """
-import csv
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gftest import check, executable_from_argv, finish, read_csv, run, write_text  # noqa: E402
 
 D = 0.01          # m
 N = 119
@@ -87,37 +88,18 @@ interval = 0.01
 average_start = {AVERAGE_START}
 """
 
-FAILURES = []
-
-
-def check(condition, message):
-    if not condition:
-        FAILURES.append(message)
-        print("FAIL: " + message, file=sys.stderr)
-    return condition
-
-
-def read_csv(path):
-    with open(path) as f:
-        return list(csv.DictReader(line for line in f if not line.startswith("#")))
-
-
 def main():
-    if len(sys.argv) != 2:
-        print(__doc__, file=sys.stderr)
+    exe = executable_from_argv(__doc__)
+    if exe is None:
         return 2
-    exe = os.path.abspath(sys.argv[1])
     with tempfile.TemporaryDirectory(prefix="grainflow_bed_") as tmp:
-        case_path = os.path.join(tmp, "lan_table_4_2.toml")
-        with open(case_path, "w") as f:
-            f.write(CASE)
+        case_path = write_text(os.path.join(tmp, "lan_table_4_2.toml"), CASE)
         out = os.path.join(tmp, "out")
         started = time.monotonic()
-        result = subprocess.run([exe, "run", case_path, "-o", out, "--quiet"], capture_output=True, text=True,
-                                timeout=600)
+        status, _, err = run(exe, "run", case_path, "-o", out, "--quiet", timeout=600)
         wall = time.monotonic() - started
         print(f"grainflow run: {wall:.1f} s wall for 10 s simulated")
-        if not check(result.returncode == 0, f"run exited {result.returncode}: {result.stderr.strip()}"):
+        if not check(status == 0, f"run exited {status}: {err.strip()}"):
             return 1
 
         mass = math.pi / 6.0 * D ** 3 * RHO
@@ -131,7 +113,7 @@ def main():
                     "time_step", "particle_steps_per_second", "max_overlap_over_diameter", "kinetic_energy",
                     "granular_temperature", "errors", "warnings"):
             check(key in summary, f"summary.json lacks '{key}'")
-        version = subprocess.run([exe, "--version"], capture_output=True, text=True).stdout.split()[-1]
+        version = run(exe, "--version", timeout=None)[1].split()[-1]
         check(summary.get("engine") == "dem", f"engine = {summary.get('engine')!r}")
         check(summary.get("dimension") == 3, f"dimension = {summary.get('dimension')!r}")
         check(summary.get("particles") == N, f"particles = {summary.get('particles')!r}, expected {N}")
@@ -232,11 +214,7 @@ def main():
             check(body[0] < peak < body[-1], f"the solids fraction peaks at the edge of the bed (zone {peak})")
             check(nu[body[0]] < 0.6 * nu[peak], f"the solids fraction at the floor, {nu[body[0]]}, is not well below the peak {nu[peak]}")
 
-    if FAILURES:
-        print(f"{len(FAILURES)} check(s) failed", file=sys.stderr)
-        return 1
-    print("test_vibrated_bed: all checks passed")
-    return 0
+    return finish("test_vibrated_bed")
 
 
 if __name__ == "__main__":

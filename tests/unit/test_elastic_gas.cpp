@@ -14,6 +14,7 @@
 
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/dem/contact_laws.hpp"
+#include "test_support.hpp"
 
 using namespace grainflow;
 using namespace grainflow::dem;
@@ -65,7 +66,7 @@ struct GasRun {
 
 GasRun run_gas(int collision_steps, double duration, int seed) {
   const CaseConfig c = load_case_from_string(gas_case(collision_steps, seed), "gas.toml");
-  auto engine = make_engine(c, build_dem_state(c), 1);
+  auto engine = test::engine_for(c, 1);
   GasRun out;
   std::visit([&](auto& e) {
     const auto& p = e.state().particles;

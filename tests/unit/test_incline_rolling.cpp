@@ -7,12 +7,12 @@
 
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <variant>
 
-#include "grainflow/core/case_loader.hpp"
 #include "grainflow/dem/contact_laws.hpp"
+#include "test_support.hpp"
 
 using namespace grainflow;
 using namespace grainflow::dem;
@@ -42,12 +42,10 @@ Trajectory run_incline(const std::string& model, double theta) {
   const double r = 0.5 * kDiameter;
   const double mass = M_PI / 6.0 * kDiameter * kDiameter * kDiameter * kDensity;
   const double y0 = r - mass * kG * std::cos(theta) / kStiffness;
-  const std::string csv = testing::TempDir() + "incline.csv";
-  {
-    std::ofstream out(csv);
-    out.precision(17);
-    out << "species,x,y,z,vx,vy,vz\nglass,0.01," << y0 << ",0.01,0,0,0\n";
-  }
+  std::ostringstream row;
+  row.precision(17);
+  row << "glass,0.01," << y0 << ",0.01,0,0,0\n";
+  const test::ParticleFile csv("incline.csv", row.str());
   const std::string contact = model == "walton_braun"
       ? "model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.9\n"
       : "model = \"linear_dashpot\"\nkn = 1.0e4\ngamma_n = 500.0\n";
@@ -67,7 +65,7 @@ diameter = 0.002
 density = 2500.0
 [particles]
 init = "file"
-file = ")" + csv + R"("
+file = ")" + csv.path() + R"("
 [contact]
 )" + contact + R"(friction = 0.0
 [walls.ylo]
@@ -76,8 +74,7 @@ friction = 0.5
 [run]
 duration = 1.0
 )";
-  const CaseConfig c = load_case_from_string(text, testing::TempDir() + "incline.toml");
-  auto engine = make_engine(c, build_dem_state(c), 1);
+  auto engine = test::engine_from_toml(text, testing::TempDir() + "incline.toml", 1);
   Trajectory out;
   std::visit([&](auto& e) {
     const auto& p = e.state().particles;

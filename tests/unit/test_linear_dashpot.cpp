@@ -6,14 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 #include <variant>
 
-#include "grainflow/core/case_loader.hpp"
 #include "grainflow/dem/contact_laws.hpp"
 #include "grainflow/dem/linear_dashpot.hpp"
+#include "test_support.hpp"
 
 using namespace grainflow;
 using namespace grainflow::dem;
@@ -31,13 +31,10 @@ struct Impact {
 // Two spheres (densities 2500 and 2500 * mass_ratio, d = 2 mm) meet head-on along x in a periodic
 // box with no gravity; the engine integrates the impact at `steps` steps per reference contact.
 Impact head_on(double gamma_n, double mass_ratio, double speed, int steps) {
-  const std::string csv = testing::TempDir() + "dashpot_head_on.csv";
-  {
-    std::ofstream out(csv);
-    out << "species,x,y,z,vx,vy,vz\n";
-    out << "a,0.008,0.01,0.01," << 0.5 * speed << ",0,0\n";
-    out << "b,0.01000001,0.01,0.01," << -0.5 * speed << ",0,0\n";
-  }
+  std::ostringstream rows;
+  rows << "a,0.008,0.01,0.01," << 0.5 * speed << ",0,0\n";
+  rows << "b,0.01000001,0.01,0.01," << -0.5 * speed << ",0,0\n";
+  const test::ParticleFile csv("dashpot_head_on.csv", rows.str());
   char text[2048];
   std::snprintf(text, sizeof text, R"(
 [domain]
@@ -64,9 +61,8 @@ gamma_n = %.17g
 [run]
 duration = 1.0
 collision_steps = %d
-)", 2500.0 * mass_ratio, csv.c_str(), gamma_n, steps);
-  const CaseConfig c = load_case_from_string(text, testing::TempDir() + "dashpot.toml");
-  auto engine = make_engine(c, build_dem_state(c), 1);
+)", 2500.0 * mass_ratio, csv.path().c_str(), gamma_n, steps);
+  auto engine = test::engine_from_toml(text, testing::TempDir() + "dashpot.toml", 1);
   Impact out;
   std::visit([&](auto& e) {
     auto& p = e.state().particles;

@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <numeric>
 #include <random>
 #include <set>
@@ -17,11 +15,10 @@
 #include <unordered_map>
 #include <vector>
 
-#include <unistd.h>
-
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/dem/contact_laws.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
+#include "test_support.hpp"
 
 using namespace grainflow;
 using namespace grainflow::dem;
@@ -164,21 +161,6 @@ long check_overlaps_listed(const Engine& engine, long step, long& with_fixed) {
   return overlapping;
 }
 
-// A file in a private temporary folder, removed with the object.
-struct TempFile {
-  std::filesystem::path dir, path;
-  TempFile(const std::string& name, const std::string& text)
-      : dir(std::filesystem::temp_directory_path() / ("grainflow_test_neighbor_list_" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(dir);
-    path = dir / name;
-    std::ofstream(path) << text;
-  }
-  ~TempFile() {
-    std::error_code ignored;
-    std::filesystem::remove_all(dir, ignored);
-  }
-};
-
 // A periodic gas of 120 spheres of two sizes (solids fraction 0.22) at T = 30 m^2/s^2, no gravity,
 // friction 0.5: speeds ~10 m/s move particles half the skin every ~20 steps, so 600 steps rebuild
 // the list ~30 times; with sort_every = 1 every rebuild re-sorts the particles.
@@ -283,7 +265,7 @@ TEST(NeighborList, CellGridFindsExactlyTheAllPairsSet) {
 TEST(NeighborList, EveryOverlappingPairIsListedAtEveryStep) {
   for (const auto& [name, text, steps] : {std::tuple{"periodic gas", kGas, 600}, std::tuple{"bed on a shaken bumpy floor", kBed, 1500}}) {
     const CaseConfig c = load_case_from_string(text, std::string(name) + ".toml");
-    DemEngineVariant variant = make_engine(c, build_dem_state(c), 2);
+    DemEngineVariant variant = test::engine_for(c, 2);
     auto& engine = std::get<DemEngine<WaltonBraun>>(variant);
     long overlapping = 0, resorted_steps = 0, with_bumps = 0;
     for (long step = 1; step <= steps; ++step) {
@@ -314,11 +296,10 @@ TEST(NeighborList, EveryOverlappingPairIsListedAtEveryStep) {
 // and any difference is lost or misplaced contact state. A control run that wipes the pair state
 // once in mid-contact shows that such a loss does change the outcome.
 TEST(NeighborList, ContactHistorySurvivesRebuildsAndResorting) {
-  const TempFile file("two_spheres.csv",
-                      "species,x,y,z,vx,vy,vz,wx,wy,wz\n"
-                      "glass,0.001,0.002,0.003,0.2,2.8,0.4,0,300,-200\n"
-                      "glass,0.004,0.0035,0.0045,-1.9,-1.2,2.1,150,0,400\n");
-  const std::string csv = file.path.string();
+  const test::ParticleFile file("two_spheres.csv",
+                                "glass,0.001,0.002,0.003,0.2,2.8,0.4,0,300,-200\n"
+                                "glass,0.004,0.0035,0.0045,-1.9,-1.2,2.1,150,0,400\n",
+                                "species,x,y,z,vx,vy,vz,wx,wy,wz");
   const std::string text = R"([domain]
 lo = [0.0, 0.0, 0.0]
 hi = [0.0065, 0.0065, 0.0065]
@@ -331,7 +312,7 @@ diameter = 0.003
 density = 2490.0
 [particles]
 init = "file"
-file = ")" + csv + R"("
+file = ")" + file.path() + R"("
 [contact]
 k1 = 1.0e6
 restitution = 0.9
@@ -347,8 +328,7 @@ skin = 1e-7
   };
   auto run = [&](int sort_every, long wipe_at_contact_step) {
     Record rec;
-    const CaseConfig c = load_case_from_string(text, "two_spheres.toml", {"run.sort_every=" + std::to_string(sort_every)});
-    DemEngineVariant variant = make_engine(c, build_dem_state(c), 1);
+    DemEngineVariant variant = test::engine_from_toml(text, "two_spheres.toml", 1, {"run.sort_every=" + std::to_string(sort_every)});
     auto& engine = std::get<DemEngine<WaltonBraun>>(variant);
     bool was_touching = false;
     std::uint32_t first = engine.state().particles.id[0];
@@ -420,8 +400,7 @@ TEST(NeighborList, ResortingDoesNotChangeAManyParticleRun) {
   auto run = [](const std::vector<std::string>& overrides, int sort_every, int wipe_at_step) {
     std::vector<std::string> all = overrides;
     all.push_back("run.sort_every=" + std::to_string(sort_every));
-    const CaseConfig c = load_case_from_string(kGas, "gas.toml", all);
-    DemEngineVariant variant = make_engine(c, build_dem_state(c), 1);
+    DemEngineVariant variant = test::engine_from_toml(kGas, "gas.toml", 1, all);
     auto& engine = std::get<DemEngine<WaltonBraun>>(variant);
     for (int step = 1; step <= 1000; ++step) {
       engine.step();

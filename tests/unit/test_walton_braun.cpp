@@ -5,14 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <string>
 #include <variant>
 #include <vector>
 
-#include "grainflow/core/case_loader.hpp"
 #include "grainflow/dem/contact_laws.hpp"
 #include "grainflow/dem/walton_braun.hpp"
+#include "test_support.hpp"
 
 using namespace grainflow;
 using namespace grainflow::dem;
@@ -379,15 +378,8 @@ TEST(WaltonBraun, TangentialForceFollowsFallingNormalForce) {
 // ---------------------------------------------------------------------------------------------
 namespace {
 
-std::string write_csv(const std::string& name, const std::string& rows) {
-  const std::string path = testing::TempDir() + name;
-  std::ofstream out(path);
-  out << "species,x,y,z,vx,vy,vz\n" << rows;
-  return path;
-}
-
-// d = 2 mm glass, K1 = 1e4 N/m, e = 0.5 for pairs and the wall, 50 steps per eq. (2-5-4).
-CaseConfig residual_case(const std::string& csv, const std::string& y_boundary) {
+// The engine for d = 2 mm glass, K1 = 1e4 N/m, e = 0.5 for pairs and the wall, 50 steps per eq. (2-5-4).
+DemEngineVariant residual_engine(const std::string& csv, const std::string& y_boundary) {
   const std::string text = R"(
 [domain]
 lo = [0.0, 0.0, 0.0]
@@ -410,16 +402,15 @@ restitution = 0.5
 duration = 1.0
 collision_steps = 50
 )";
-  return load_case_from_string(text, testing::TempDir() + "residual.toml");
+  return test::engine_from_toml(text, testing::TempDir() + "residual.toml", 1);
 }
 
 }  // namespace
 
 TEST(WaltonBraun, EngineResetsResidualOverlapBetweenWallImpacts) {
   const double v1 = 0.5;  // m/s, first impact; the second is at 0.3 v1 < (alpha0 / alpha_max1 = 0.75) v1
-  const std::string csv = write_csv("residual_wall.csv", "glass,0.01,0.0010001,0.01,0.0,-0.5,0.0\n");
-  const CaseConfig c = residual_case(csv, R"(["wall", "open"])");
-  auto engine = dem::make_engine(c, dem::build_dem_state(c), 1);
+  const test::ParticleFile csv("residual_wall.csv", "glass,0.01,0.0010001,0.01,0.0,-0.5,0.0\n");
+  auto engine = residual_engine(csv.path(), R"(["wall", "open"])");
   std::visit([&](auto& e) {
     auto& p = e.state().particles;
     const double r = p.radius[0];
@@ -446,11 +437,10 @@ TEST(WaltonBraun, EngineResetsResidualOverlapBetweenWallImpacts) {
 
 TEST(WaltonBraun, EngineResetsResidualOverlapBetweenPairImpacts) {
   // Two spheres approach head-on at 0.25 m/s each, separate, and are sent back at 0.3 x that.
-  const std::string csv = write_csv("residual_pair.csv",
-                                    "glass,0.008,0.01,0.01,0.25,0.0,0.0\n"
-                                    "glass,0.0100001,0.01,0.01,-0.25,0.0,0.0\n");
-  const CaseConfig c = residual_case(csv, R"("periodic")");
-  auto engine = dem::make_engine(c, dem::build_dem_state(c), 1);
+  const test::ParticleFile csv("residual_pair.csv",
+                               "glass,0.008,0.01,0.01,0.25,0.0,0.0\n"
+                               "glass,0.0100001,0.01,0.01,-0.25,0.0,0.0\n");
+  auto engine = residual_engine(csv.path(), R"("periodic")");
   std::visit([&](auto& e) {
     auto& p = e.state().particles;
     auto gap = [&] { return std::fabs(p.position[1].x - p.position[0].x) - (p.radius[0] + p.radius[1]); };
