@@ -7,7 +7,45 @@
 
 namespace grainflow::app {
 
+namespace {
+
+// Event-driven cases: what the particles are and how they collide.
+void print_edmd_check(const CaseConfig& c, std::ostream& out) {
+  const int dim = c.engine.dimension;
+  double measure = 1.0, solids = 0.0;
+  long total = 0;
+  for (int a = 0; a < dim; ++a) measure *= c.domain.length(a);
+  out << fmt::format("case {}: valid\n", c.path);
+  out << fmt::format("  engine                      edmd (event-driven hard {}), dimension {}\n", dim == 2 ? "discs" : "spheres", dim);
+  for (const auto& s : c.species) {
+    const double area_or_volume = dim == 2 ? M_PI / 4.0 * s.diameter * s.diameter : M_PI / 6.0 * s.diameter * s.diameter * s.diameter;
+    solids += s.count * area_or_volume;
+    total += s.count;
+    out << fmt::format("  species {:<18}  d = {:.6g} m, density = {:.6g} {}, mass = {:.6g} kg, count = {}\n", s.name,
+                       s.diameter, s.density, dim == 2 ? "kg/m^2" : "kg/m^3", s.density * area_or_volume, s.count);
+  }
+  const auto& k = c.collision;
+  out << fmt::format("  particles                   {}\n", total);
+  out << fmt::format("  packing fraction (box)      {:.6g}\n", solids / measure);
+  out << fmt::format("  restitution                 {} ({}), walls {:.6g}\n",
+                     k.restitution_law == "campbell" ? "campbell law" : fmt::format("{:.6g}", k.restitution),
+                     k.restitution_law, k.wall_restitution);
+  out << fmt::format("  tangential restitution      {:.6g}  (-1 smooth, 0 Campbell's rough rule)\n", k.tangential_restitution);
+  out << fmt::format("  inertia factor (k/R)^2      {:.6g}\n", k.inertia_factor);
+  if (k.elastic_speed > 0.0) out << fmt::format("  elastic below impact speed  {:.6g} m/s\n", k.elastic_speed);
+  if (k.contact_duration > 0.0) out << fmt::format("  TC contact duration         {:.6g} s\n", k.contact_duration);
+  if (k.rolling_speed > 0.0) out << fmt::format("  rolling below rebound speed {:.6g} m/s\n", k.rolling_speed);
+  out << fmt::format("  run                         {:.6g} s{}\n", c.run.duration,
+                     c.run.collisions > 0 ? fmt::format(" or {} collisions", c.run.collisions) : "");
+}
+
+}  // namespace
+
 void print_check(const CaseConfig& c, std::ostream& out) {
+  if (c.engine.kind == "edmd") {
+    print_edmd_check(c, out);
+    return;
+  }
   const dem::DerivedQuantities d = dem::derive(c);
   const auto& ref = c.species[d.reference_species];
   out << fmt::format("case {}: valid\n", c.path);

@@ -1,4 +1,5 @@
 #include "grainflow/app/dem_run.hpp"
+#include "grainflow/app/run_support.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -64,69 +65,6 @@ void write_profiles(const std::string& path, const observe::ZoneProfile& profile
     }
   });
 }
-
-void write_final_state(const std::string& path, const ParticleStore& p, const std::vector<SpeciesConfig>& species) {
-  io::write_atomically(path, [&](std::ostream& out) {
-    out.precision(17);  // exact doubles: the state can be read back
-    out << "# units: diameter m, x y z m, vx vy vz m/s, wx wy wz rad/s\n";
-    out << "id,species,diameter,x,y,z,vx,vy,vz,wx,wy,wz\n";
-    std::vector<std::size_t> by_id(p.size());
-    for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = i;
-    for (std::size_t i : by_id) {
-      const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
-      out << p.id[i] << ',' << species[p.species[i]].name << ',' << 2.0 * p.target_radius[i] << ',' << x.x << ','
-          << x.y << ',' << x.z << ',' << v.x << ',' << v.y << ',' << v.z << ',' << w.x << ',' << w.y << ',' << w.z
-          << '\n';
-    }
-  });
-}
-
-// The steps at which something recurring every `interval` seconds happens: the step nearest to each
-// k * interval (k = 1, 2, ...), so output times stay on the requested grid and the last one (at the
-// end of a run whose duration is a multiple of the interval) is not lost. A fixed step count,
-// round(interval / dt), drifts by up to dt/2 per interval and can skip the final output.
-class Schedule {
- public:
-  Schedule(double interval, double dt) : interval_(interval), dt_(dt) { advance(); }
-  // True once per interval, at the first step at or after the next scheduled one.
-  bool due(long step) {
-    if (interval_ <= 0.0 || step < next_) return false;
-    advance();
-    return true;
-  }
-
- private:
-  void advance() {
-    ++k_;
-    next_ = std::max(next_ + 1, static_cast<long>(std::llround(k_ * interval_ / dt_)));
-  }
-  double interval_, dt_;
-  long k_ = 0, next_ = 0;
-};
-
-class Progress {
- public:
-  Progress(bool enabled, double duration) : enabled_(enabled), duration_(duration), start_(clock::now()), last_(start_) {}
-  void update(double time) {
-    if (!enabled_) return;
-    const auto now = clock::now();
-    if (now - last_ < std::chrono::milliseconds(500)) return;
-    last_ = now;
-    const double elapsed = std::chrono::duration<double>(now - start_).count();
-    const double rate = time / elapsed;
-    const double eta = rate > 0.0 ? (duration_ - time) / rate : 0.0;
-    std::fprintf(stderr, "\r  t = %.4g / %.4g s   %.3g s/s   ETA %.0f s   ", time, duration_, rate, eta);
-  }
-  void finish() {
-    if (enabled_) std::fprintf(stderr, "\n");
-  }
-
- private:
-  using clock = std::chrono::steady_clock;
-  bool enabled_;
-  double duration_;
-  clock::time_point start_, last_;
-};
 
 }  // namespace
 

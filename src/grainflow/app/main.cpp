@@ -8,6 +8,7 @@
 
 #include "grainflow/app/check_command.hpp"
 #include "grainflow/app/dem_run.hpp"
+#include "grainflow/app/edmd_run.hpp"
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
@@ -98,7 +99,7 @@ int main(int argc, char** argv) {
     options.output_directory = output_dir.empty() ? (fs::path("runs") / fs::path(case_path).stem()).string() : output_dir;
     options.threads = threads;
     options.quiet = quiet;
-    return app::run_dem(c, options);
+    return c.engine.kind == "edmd" ? app::run_edmd(c, options) : app::run_dem(c, options);
   } catch (const InputError& e) {
     std::cerr << "grainflow: invalid input: " << e.what() << "\n";
     return 2;

@@ -50,6 +50,10 @@ struct ParticlesConfig {
   std::optional<Vec3> region_lo, region_hi;  // m, where random / lattice particles go
   double expansion_time = 0.05;  // s, radius expansion of section 2.2 (init = random)
   double lattice_spacing = 1.02; // in diameters of the largest species (init = lattice)
+  std::string lattice = "cubic"; // edmd: cubic (square in 2D) | fcc (3D; lattice_spacing = nearest-neighbor distance)
+  double lattice_jitter = 0.0;   // edmd lattice: random displacement, as a fraction of the gap
+  Vec3 initial_velocity;         // m/s, added to every moving particle
+  std::string initial_profile = "uniform";  // uniform | couette (linear from the lo wall to the hi wall's speed)
 };
 
 struct ContactConfig {
@@ -66,10 +70,24 @@ struct ContactConfig {
   double friction = 0.0; // mu between particles
 };
 
+// Event-driven collisions (engine.kind = "edmd"), Campbell 1982 sections 2.11-2.12.
+struct CollisionConfig {
+  double restitution = 1.0;             // particle-particle normal restitution (constant law)
+  std::string restitution_law = "constant";  // constant | campbell (e = (1 + exp(-3 dv / velocity_scale)) / 2)
+  double velocity_scale = 0.0;          // m/s, campbell law; 0 = sqrt(g R) of the first species
+  double elastic_speed = 0.0;           // m/s, impacts slower than this are elastic (stops inelastic collapse)
+  double rolling_speed = 0.0;           // m/s, a wall rebound slower than this starts rolling (section 2.14.2)
+  double contact_duration = 0.0;        // s, TC model: a collision within this time of a particle's last one is elastic
+  double tangential_restitution = -1.0; // -1 smooth, 0 Campbell's rough rule, +1 elastic rough
+  double wall_restitution = 1.0;        // default for walls
+  double inertia_factor = 0.0;          // q = (k/R)^2; 0 = 0.5 (discs) in 2D, 0.4 (solid spheres) in 3D
+};
+
 struct WallConfig {
   double restitution = -1.0;  // walton_braun; < 0: the particles' value (also for the bumps)
   double friction = -1.0;     // < 0: the particles' value (also for the bumps)
   double gamma_n = -1.0;      // linear_dashpot walls; < 0: the particles' value
+  std::string condition = "smooth";  // edmd walls: smooth | rough | no_slip (Campbell's Couette walls)
   Vec3 velocity;              // m/s, constant velocity of the wall (a drive adds to it)
   // bumpy walls: fixed half-spheres centred on the wall plane (section 2.6.3)
   double bump_diameter = 0.0;     // m; 0 = diameter of the first species
@@ -95,6 +113,7 @@ struct RunConfig {
   double skin = -1.0;          // m, Verlet skin; < 0: 0.15 largest diameter
   double halt_overlap = 0.0;   // stop when max overlap / d exceeds this (0 = never; seeds: 0.01)
   int sort_every = 20;         // neighbor rebuilds between spatial re-sorts (0 = never)
+  long long collisions = 0;    // edmd: stop after this many particle collisions (0 = run the duration)
 };
 
 struct OutputConfig {
@@ -120,6 +139,7 @@ struct CaseConfig {
   std::vector<SpeciesConfig> species;
   ParticlesConfig particles;
   ContactConfig contact;
+  CollisionConfig collision;
   std::array<WallConfig, 6> walls;
   DriveConfig drive;
   RunConfig run;

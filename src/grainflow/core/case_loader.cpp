@@ -126,11 +126,22 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (r.has("region_hi")) p.region_hi = r.vec3("region_hi", {});
     p.expansion_time = r.number("expansion_time", p.expansion_time);
     if (p.expansion_time < 0.0) r.fail("expansion_time", "must not be negative");
+    p.lattice = r.string("lattice", p.lattice);
+    if (p.lattice != "cubic" && p.lattice != "fcc") r.fail("lattice", "must be \"cubic\" or \"fcc\"");
+    if (p.lattice == "fcc" && (c.engine.kind != "edmd" || c.engine.dimension != 3))
+      r.fail("lattice", "fcc is available for the 3D event-driven engine");
+    p.lattice_jitter = r.number("lattice_jitter", 0.0);
+    if (!(p.lattice_jitter >= 0.0 && p.lattice_jitter < 1.0)) r.fail("lattice_jitter", "must lie in [0, 1)");
+    p.initial_velocity = r.vec3("initial_velocity", {});
+    p.initial_profile = r.string("initial_profile", p.initial_profile);
+    if (p.initial_profile != "uniform" && p.initial_profile != "couette")
+      r.fail("initial_profile", "must be \"uniform\" or \"couette\"");
     p.lattice_spacing = r.number("lattice_spacing", p.lattice_spacing);
     if (!(p.lattice_spacing >= 1.0)) r.fail("lattice_spacing", "must be at least 1 (in diameters)");
     r.reject_unknown_keys();
   }
-  {
+  if (c.engine.kind == "dem") {
+    if (top.has("collision")) top.fail("collision", "is for engine.kind = \"edmd\"; the DEM engine takes [contact]");
     TomlReader r = top.table("contact");
     auto& k = c.contact;
     k.model = r.string("model", k.model);
@@ -157,15 +168,50 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     }
     r.reject_unknown_keys();
   }
+  if (c.engine.kind == "edmd") {
+    if (top.has("contact")) top.fail("contact", "is for engine.kind = \"dem\"; the event-driven engine takes [collision]");
+    TomlReader r = top.table("collision");
+    auto& k = c.collision;
+    k.restitution = r.number("restitution", k.restitution);
+    if (!(k.restitution >= 0.0 && k.restitution <= 1.0)) r.fail("restitution", "must lie in [0, 1]");
+    k.restitution_law = r.string("restitution_law", k.restitution_law);
+    if (k.restitution_law != "constant" && k.restitution_law != "campbell")
+      r.fail("restitution_law", "must be \"constant\" or \"campbell\"");
+    k.velocity_scale = r.number("velocity_scale", 0.0);
+    if (k.velocity_scale < 0.0) r.fail("velocity_scale", "must not be negative");
+    k.rolling_speed = r.number("rolling_speed", 0.0);
+    if (k.rolling_speed < 0.0) r.fail("rolling_speed", "must not be negative");
+    k.contact_duration = r.number("contact_duration", 0.0);
+    if (k.contact_duration < 0.0) r.fail("contact_duration", "must not be negative");
+    k.elastic_speed = r.number("elastic_speed", 0.0);
+    if (k.elastic_speed < 0.0) r.fail("elastic_speed", "must not be negative");
+    if (r.has("roughness") && r.has("tangential_restitution"))
+      r.fail("tangential_restitution", "give either roughness or tangential_restitution, not both");
+    const std::string roughness = r.string("roughness", "smooth");
+    if (roughness != "smooth" && roughness != "rough") r.fail("roughness", "must be \"smooth\" or \"rough\"");
+    k.tangential_restitution = r.number("tangential_restitution", roughness == "rough" ? 0.0 : -1.0);
+    if (!(k.tangential_restitution >= -1.0 && k.tangential_restitution <= 1.0))
+      r.fail("tangential_restitution", "must lie in [-1, 1]");
+    k.wall_restitution = r.number("wall_restitution", k.restitution);
+    if (!(k.wall_restitution >= 0.0 && k.wall_restitution <= 1.0)) r.fail("wall_restitution", "must lie in [0, 1]");
+    k.inertia_factor = r.number("inertia_factor", c.engine.dimension == 2 ? 0.5 : 0.4);
+    if (!(k.inertia_factor > 0.0 && k.inertia_factor <= 1.0)) r.fail("inertia_factor", "must lie in (0, 1]");
+    r.reject_unknown_keys();
+  }
   {
     TomlReader walls = top.table("walls");
     for (int f = 0; f < 6; ++f) {
       if (!walls.has(kFaceNames[f])) continue;
       TomlReader r = walls.table(kFaceNames[f]);
       WallConfig& w = c.walls[f];
-      const bool linear = c.contact.model == "linear_dashpot";
+      const bool edmd = c.engine.kind == "edmd";
+      const bool linear = !edmd && c.contact.model == "linear_dashpot";
       if (linear && r.has("restitution")) r.fail("restitution", "linear_dashpot walls take gamma_n, not restitution");
-      if (!linear && r.has("gamma_n")) r.fail("gamma_n", "walton_braun walls take restitution, not gamma_n");
+      if (!linear && r.has("gamma_n")) r.fail("gamma_n", "only linear_dashpot walls take gamma_n");
+      w.condition = r.string("condition", "smooth");
+      if (r.has("condition") && !edmd) r.fail("condition", "wall conditions are for the event-driven engine");
+      if (w.condition != "smooth" && w.condition != "rough" && w.condition != "no_slip")
+        r.fail("condition", "must be \"smooth\", \"rough\" or \"no_slip\"");
       w.restitution = r.number("restitution", -1.0);
       if (r.has("restitution") && !(w.restitution > 0.0 && w.restitution <= 1.0))
         r.fail("restitution", "must lie in (0, 1]");
@@ -190,6 +236,8 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     }
     walls.reject_unknown_keys();
   }
+  if (top.has("drive") && c.engine.kind == "edmd")
+    top.fail("drive", "vibrating drives are for the DEM engine; event-driven walls move at constant velocity");
   if (top.has("drive")) {
     TomlReader r = top.table("drive");
     auto& d = c.drive;
@@ -231,8 +279,14 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
   {
     TomlReader r = top.table("run");
     auto& run = c.run;
-    run.duration = r.required_number("duration");
+    run.collisions = r.integer("collisions", 0);
+    if (run.collisions < 0) r.fail("collisions", "must not be negative");
+    if (run.collisions > 0 && c.engine.kind != "edmd") r.fail("collisions", "only the event-driven engine counts collisions");
+    run.duration = run.collisions > 0 ? r.number("duration", 1e300) : r.required_number("duration");
     if (!(run.duration > 0.0)) r.fail("duration", "must be positive");
+    if (c.engine.kind == "edmd")
+      for (const char* key : {"time_step", "collision_steps", "skin", "halt_overlap", "sort_every"})
+        if (r.has(key)) r.fail(key, "is a soft-sphere (dem) setting; the event-driven engine has no time step");
     run.time_step = r.number("time_step", 0.0);
     if (run.time_step < 0.0) r.fail("time_step", "must not be negative (0 = from eq. 2-5-4)");
     run.collision_steps = static_cast<int>(r.integer("collision_steps", run.collision_steps));

@@ -1,0 +1,40 @@
+#include "grainflow/app/run_support.hpp"
+
+#include <cstdio>
+
+#include "grainflow/io/atomic_file.hpp"
+
+namespace grainflow::app {
+
+void Progress::update(double time) {
+  if (!enabled_) return;
+  const auto now = clock::now();
+  if (now - last_ < std::chrono::milliseconds(500)) return;
+  last_ = now;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double rate = time / elapsed;
+  const double eta = rate > 0.0 ? (duration_ - time) / rate : 0.0;
+  std::fprintf(stderr, "\r  t = %.4g / %.4g s   %.3g s/s   ETA %.0f s   ", time, duration_, rate, eta);
+}
+
+void Progress::finish() {
+  if (enabled_) std::fprintf(stderr, "\n");
+}
+
+void write_final_state(const std::string& path, const ParticleStore& p, const std::vector<SpeciesConfig>& species) {
+  io::write_atomically(path, [&](std::ostream& out) {
+    out.precision(17);  // exact doubles: the state can be read back
+    out << "# units: diameter m, x y z m, vx vy vz m/s, wx wy wz rad/s\n";
+    out << "id,species,diameter,x,y,z,vx,vy,vz,wx,wy,wz\n";
+    std::vector<std::size_t> by_id(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = i;
+    for (std::size_t i : by_id) {
+      const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
+      out << p.id[i] << ',' << species[p.species[i]].name << ',' << 2.0 * p.target_radius[i] << ',' << x.x << ','
+          << x.y << ',' << x.z << ',' << v.x << ',' << v.y << ',' << v.z << ',' << w.x << ',' << w.y << ',' << w.z
+          << '\n';
+    }
+  });
+}
+
+}  // namespace grainflow::app

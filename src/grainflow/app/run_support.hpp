@@ -1,0 +1,56 @@
+// Pieces every engine's run driver shares: output schedules on an exact time grid, the progress
+// line, and final_state.csv.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "grainflow/core/case_config.hpp"
+#include "grainflow/particles/particle_store.hpp"
+
+namespace grainflow::app {
+
+// The steps at which something recurring every `interval` seconds happens: the step nearest to each
+// k * interval (k = 1, 2, ...), so output times stay on the requested grid and the last one (at the
+// end of a run whose duration is a multiple of the interval) is not lost. A fixed step count,
+// round(interval / dt), drifts by up to dt/2 per interval and can skip the final output.
+class Schedule {
+ public:
+  Schedule(double interval, double dt) : interval_(interval), dt_(dt) { advance(); }
+  // True once per interval, at the first step at or after the next scheduled one.
+  bool due(long step) {
+    if (interval_ <= 0.0 || step < next_) return false;
+    advance();
+    return true;
+  }
+
+ private:
+  void advance() {
+    ++k_;
+    next_ = std::max(next_ + 1, static_cast<long>(std::llround(k_ * interval_ / dt_)));
+  }
+  double interval_, dt_;
+  long k_ = 0, next_ = 0;
+};
+
+// The progress line on stderr (simulated time, rate, ETA), when stderr is a terminal.
+class Progress {
+ public:
+  Progress(bool enabled, double duration) : enabled_(enabled), duration_(duration), start_(clock::now()), last_(start_) {}
+  void update(double time);
+  void finish();
+
+ private:
+  using clock = std::chrono::steady_clock;
+  bool enabled_;
+  double duration_;
+  clock::time_point start_, last_;
+};
+
+// final_state.csv: every particle by id, with exact doubles so the state can start another run.
+void write_final_state(const std::string& path, const ParticleStore& p, const std::vector<SpeciesConfig>& species);
+
+}  // namespace grainflow::app

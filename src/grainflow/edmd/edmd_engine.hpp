@@ -1,0 +1,376 @@
+// The event-driven engine: exact free flight between binary collisions, one scheduled event per
+// particle in an indexed heap, stale events found by per-particle trajectory counters (a particle
+// whose scheduled partner changed course is re-predicted when its event comes up), cell-crossing
+// events on a grid of cells at least a diameter wide, and lazily advanced particles (own clocks),
+// so an event costs O(log N). Dimension 2 (discs in the x-y plane) or 3 is a template parameter.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "grainflow/core/error.hpp"
+#include "grainflow/edmd/edmd_state.hpp"
+#include "grainflow/edmd/event_queue.hpp"
+#include "grainflow/edmd/free_flight.hpp"
+
+namespace grainflow::edmd {
+
+struct EventCounters {
+  long long events = 0;          // every processed event, stale ones included
+  long long collisions = 0;      // particle-particle
+  long long wall_collisions = 0;
+  long long cell_crossings = 0;
+  long long stale = 0;           // events found invalid and re-predicted
+  long long rolling_starts = 0;  // wall rebounds too slow to bounce: the particle rolls
+  double virial = 0.0;           // sum over collisions of r_ij . J_i (kg m^2/s), for the pressure
+  double dissipated = 0.0;       // J lost in collisions
+};
+
+template <int Dim>
+class EdmdEngine {
+  static_assert(Dim == 2 || Dim == 3);
+
+ public:
+  explicit EdmdEngine(EdmdState state) : s_(std::move(state)) {
+    const ParticleStore& p = s_.particles;
+    const std::size_t n = p.size();
+    s_.clock.assign(n, s_.time);
+    count_.assign(n, 0);
+    last_collision_.assign(n, -kNever);
+    rolling_.assign(n, -1);
+    event_.assign(n, Event{});
+    event_time_.assign(n, kNever);
+    double max_diameter = 0.0;
+    for (double r : p.radius) max_diameter = std::max(max_diameter, 2.0 * r);
+    for (int a = 0; a < 3; ++a) {
+      cells_[a] = a < Dim ? std::max(1, static_cast<int>(std::floor(s_.box.length(a) / max_diameter))) : 1;
+      cells_[a] = std::min(cells_[a], 1 << 11);
+      cell_size_[a] = s_.box.length(a) / cells_[a];
+    }
+    head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2], -1);
+    next_.assign(n, -1);
+    prev_.assign(n, -1);
+    cell_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      s_.box.wrap(s_.particles.position[i], s_.particles.image[i]);
+      cell_[i] = cell_of(s_.particles.position[i]);
+      link(static_cast<int>(i));
+    }
+    for (std::size_t i = 0; i < n; ++i) predict(static_cast<std::uint32_t>(i));
+    queue_.reset(n, &event_time_);
+  }
+
+  EdmdState& state() { return s_; }
+  const EdmdState& state() const { return s_; }
+  EventCounters& counters() { return counters_; }
+  // Time of the event scheduled for particle i (infinite when none).
+  double scheduled_time(std::size_t i) const { return event_time_[i]; }
+
+  // Processes every event up to time `t_end`, then brings all particles to `t_end`.
+  void advance_to(double t_end) {
+    const std::size_t n = s_.particles.size();
+    if (n == 0) {
+      s_.time = t_end;
+      return;
+    }
+    long long without_progress = 0;
+    while (true) {
+      const std::uint32_t i = queue_.top();
+      const double t = event_time_[i];
+      if (!(t <= t_end)) break;
+      if (t > s_.time) {
+        without_progress = 0;
+      } else if (++without_progress > 100 * static_cast<long long>(n) + 1000) {
+        throw RunError("simulated time stopped advancing at t = " + std::to_string(s_.time) + " s (particle " +
+                       std::to_string(s_.particles.id[i]) +
+                       " keeps colliding at the same instant: inelastic collapse; set collision.elastic_speed "
+                       "so that very slow impacts are elastic)");
+      }
+      s_.time = t;
+      process(i);
+    }
+    synchronize(t_end);
+  }
+
+  // Brings every particle to time t (no event may lie before t).
+  void synchronize(double t) {
+    for (std::size_t i = 0; i < s_.particles.size(); ++i) advance(static_cast<std::uint32_t>(i), t);
+    s_.time = t;
+  }
+
+  // Re-schedules every particle (after walls changed their motion).
+  void repredict_all() {
+    for (std::size_t i = 0; i < s_.particles.size(); ++i) {
+      advance(static_cast<std::uint32_t>(i), s_.time);
+      predict(static_cast<std::uint32_t>(i));
+      queue_.update(static_cast<std::uint32_t>(i));
+    }
+  }
+
+ private:
+  enum class Kind : std::uint8_t { none, pair, wall, cell };
+  struct Event {
+    Kind kind = Kind::none;
+    std::int8_t detail = 0;          // wall index, or cell face (axis * 2 + side)
+    std::uint32_t partner = 0;
+    std::uint32_t partner_count = 0; // partner's trajectory counter when predicted
+  };
+
+  int cell_of(const Vec3& x) const {
+    int c[3] = {0, 0, 0};
+    for (int a = 0; a < Dim; ++a)
+      c[a] = std::clamp(static_cast<int>(std::floor((x[a] - s_.box.lo[a]) / cell_size_[a])), 0, cells_[a] - 1);
+    return c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
+  }
+  std::array<int, 3> cell_coordinates(int cell) const {
+    return {cell % cells_[0], (cell / cells_[0]) % cells_[1], cell / (cells_[0] * cells_[1])};
+  }
+  void link(int i) {
+    const int c = cell_[i];
+    prev_[i] = -1;
+    next_[i] = head_[c];
+    if (head_[c] >= 0) prev_[head_[c]] = i;
+    head_[c] = i;
+  }
+  void unlink(int i) {
+    if (prev_[i] >= 0) next_[prev_[i]] = next_[i];
+    else head_[cell_[i]] = next_[i];
+    if (next_[i] >= 0) prev_[next_[i]] = prev_[i];
+  }
+
+  // Moves particle i along its parabola to time t.
+  void advance(std::uint32_t i, double t) {
+    const double dt = t - s_.clock[i];
+    if (dt == 0.0) return;
+    ParticleStore& p = s_.particles;
+    const Vec3 a = acceleration(i);
+    p.position[i] += dt * p.velocity[i] + (0.5 * dt * dt) * a;
+    p.velocity[i] += dt * a;
+    s_.clock[i] = t;
+    if (rolling_[i] >= 0) roll_without_slip(i);
+  }
+
+  // Free flight accelerates with gravity; a rolling particle with the tangential part of gravity,
+  // reduced by 1/(1 + q) when it rolls without slipping (rough and no-slip walls).
+  Vec3 acceleration(std::uint32_t i) const {
+    if (rolling_[i] < 0) return s_.gravity;
+    const EdmdWall& wall = s_.walls[rolling_[i]];
+    Vec3 a = s_.gravity;
+    a[wall.axis] = 0.0;
+    if (wall.condition == WallCondition::smooth) return a;
+    const ParticleStore& p = s_.particles;
+    const double q = 1.0 / (p.inv_inertia[i] * p.mass[i] * p.radius[i] * p.radius[i]);
+    return a * (1.0 / (1.0 + q));
+  }
+
+  // Spin of a particle rolling without slip on its wall: omega x n R = v_t (spin about n kept).
+  void roll_without_slip(std::uint32_t i) {
+    const EdmdWall& wall = s_.walls[rolling_[i]];
+    if (wall.condition == WallCondition::smooth) return;
+    ParticleStore& p = s_.particles;
+    Vec3 n;
+    n[wall.axis] = wall.inward;
+    const Vec3 slide = p.velocity[i] - wall.velocity;
+    const Vec3 spin_about_normal = dot(p.angular_velocity[i], n) * n;
+    p.angular_velocity[i] = spin_about_normal + cross(n, slide) * (1.0 / p.radius[i]);
+  }
+
+  // Finds i's next event from time s_.time (i must be current).
+  void predict(std::uint32_t i) {
+    const ParticleStore& p = s_.particles;
+    const double now = s_.time;
+    double best = kNever;
+    Event e;
+    const Vec3 xi = p.position[i];
+    const Vec3 vi = p.velocity[i];
+    const Vec3 ai = acceleration(i);
+    const double ri = p.radius[i];
+    // Partners in the neighboring cells (periodic images through shifted cells).
+    const auto ci = cell_coordinates(cell_[i]);
+    const int span_z = Dim == 3 ? 1 : 0;
+    for (int dz = -span_z; dz <= span_z; ++dz) {
+      int cz = ci[2] + dz, sz = 0;
+      if (!wrap_cell(2, cz, sz)) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        int cy = ci[1] + dy, sy = 0;
+        if (!wrap_cell(1, cy, sy)) continue;
+        for (int dx = -1; dx <= 1; ++dx) {
+          int cx = ci[0] + dx, sx = 0;
+          if (!wrap_cell(0, cx, sx)) continue;
+          const Vec3 shift{sx * s_.box.length(0), sy * s_.box.length(1), sz * s_.box.length(2)};
+          for (int j = head_[cx + cells_[0] * (cy + cells_[1] * cz)]; j >= 0; j = next_[j]) {
+            if (static_cast<std::uint32_t>(j) == i) continue;
+            const double dtj = now - s_.clock[j];
+            const Vec3 aj = acceleration(static_cast<std::uint32_t>(j));
+            const Vec3 xj = p.position[j] + dtj * p.velocity[j] + (0.5 * dtj * dtj) * aj + shift;
+            const Vec3 vj = p.velocity[j] + dtj * aj;
+            const double t = (rolling_[i] < 0 && rolling_[j] < 0)
+                                 ? contact_time(xi - xj, vi - vj, ri + p.radius[j])
+                                 : contact_time_accelerated(xi - xj, vi - vj, ai - aj, ri + p.radius[j], best);
+            if (t < best) {
+              best = t;
+              e = Event{Kind::pair, 0, static_cast<std::uint32_t>(j), count_[j]};
+            }
+          }
+        }
+      }
+    }
+    for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+      if (rolling_[i] == static_cast<int>(w)) continue;  // rolling on it: no bounces
+      const EdmdWall& wall = s_.walls[w];
+      const int a = wall.axis;
+      const double gap = wall.inward * (xi[a] - wall.at(now)) - ri;
+      const double t = closing_time(gap, wall.inward * (vi[a] - wall.velocity[a]), wall.inward * ai[a]);
+      if (t < best) {
+        best = t;
+        e = Event{Kind::wall, static_cast<std::int8_t>(w), 0, 0};
+      }
+    }
+    for (int a = 0; a < Dim; ++a) {
+      const bool periodic = s_.box.periodic[a];
+      if (cells_[a] == 1 && !periodic) continue;
+      const double face_lo = s_.box.lo[a] + ci[a] * cell_size_[a];
+      const double face_hi = ci[a] + 1 == cells_[a] ? s_.box.hi[a] : face_lo + cell_size_[a];
+      if (ci[a] > 0 || periodic) {
+        const double t = closing_time(xi[a] - face_lo, vi[a], ai[a]);
+        if (t < best) {
+          best = t;
+          e = Event{Kind::cell, static_cast<std::int8_t>(a * 2), 0, 0};
+        }
+      }
+      if (ci[a] + 1 < cells_[a] || periodic) {
+        const double t = closing_time(face_hi - xi[a], -vi[a], -ai[a]);
+        if (t < best) {
+          best = t;
+          e = Event{Kind::cell, static_cast<std::int8_t>(a * 2 + 1), 0, 0};
+        }
+      }
+    }
+    event_[i] = e;
+    event_time_[i] = now + best;
+  }
+
+  bool wrap_cell(int axis, int& c, int& shift) const {
+    if (c >= 0 && c < cells_[axis]) return true;
+    if (!s_.box.periodic[axis]) return false;
+    shift = c < 0 ? -1 : 1;
+    c -= shift * cells_[axis];
+    return true;
+  }
+
+  void process(std::uint32_t i) {
+    ++counters_.events;
+    const Event e = event_[i];
+    switch (e.kind) {
+      case Kind::pair: {
+        const std::uint32_t j = e.partner;
+        if (count_[j] != e.partner_count) {  // the partner changed course: re-predict i
+          ++counters_.stale;
+          advance(i, s_.time);
+          break;
+        }
+        advance(i, s_.time);
+        advance(j, s_.time);
+        rolling_[i] = rolling_[j] = -1;  // a particle collision ends rolling
+        collide(i, j);
+        predict(j);
+        queue_.update(j);
+        break;
+      }
+      case Kind::wall:
+        advance(i, s_.time);
+        collide_with_wall(i, e.detail);
+        break;
+      case Kind::cell:
+        advance(i, s_.time);
+        cross_cell(i, e.detail / 2, e.detail % 2 == 1);
+        break;
+      case Kind::none:
+        break;
+    }
+    predict(i);
+    queue_.update(i);
+  }
+
+  void collide(std::uint32_t i, std::uint32_t j) {
+    ParticleStore& p = s_.particles;
+    const Vec3 dr = s_.box.minimum_image(p.position[i], p.position[j]);
+    const Vec3 normal = dr * (1.0 / norm(dr));
+    const double before = kinetic_energy(i) + kinetic_energy(j);
+    const bool recent = s_.time - last_collision_[i] < s_.contact_duration || s_.time - last_collision_[j] < s_.contact_duration;
+    const Vec3 impulse = collide_pair({p.velocity[i], p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
+                                      {p.velocity[j], p.angular_velocity[j], p.radius[j], p.inv_mass[j], p.inv_inertia[j]},
+                                      normal, recent ? elastic_ : s_.restitution, s_.tangential_restitution);
+    last_collision_[i] = last_collision_[j] = s_.time;
+    counters_.virial += dot(dr, impulse);
+    counters_.dissipated += before - kinetic_energy(i) - kinetic_energy(j);
+    ++count_[i];
+    ++count_[j];
+    ++counters_.collisions;
+  }
+
+  void collide_with_wall(std::uint32_t i, int w) {
+    const EdmdWall& wall = s_.walls[w];
+    ParticleStore& p = s_.particles;
+    Vec3 normal;
+    normal[wall.axis] = wall.inward;
+    const double before = kinetic_energy(i);
+    const bool recent = s_.time - last_collision_[i] < s_.contact_duration;
+    collide_wall({p.velocity[i], p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]}, normal,
+                 wall.velocity, recent ? elastic_ : wall.restitution, wall.condition);
+    last_collision_[i] = s_.time;
+    counters_.dissipated += before - kinetic_energy(i);
+    ++count_[i];
+    ++counters_.wall_collisions;
+    // Too slow to bounce (section 2.14.2): the particle rolls along the wall until its next
+    // particle collision; bouncing ever closer in time would stop the clock.
+    const double rebound = wall.inward * (p.velocity[i][wall.axis] - wall.velocity[wall.axis]);
+    if (rebound < s_.rolling_speed && wall.velocity[wall.axis] == 0.0) {
+      p.velocity[i][wall.axis] = wall.velocity[wall.axis];
+      p.position[i][wall.axis] = wall.at(s_.time) + wall.inward * p.radius[i];
+      rolling_[i] = w;
+      roll_without_slip(i);
+      ++counters_.rolling_starts;
+    }
+  }
+
+  void cross_cell(std::uint32_t i, int axis, bool upward) {
+    ++counters_.cell_crossings;
+    auto c = cell_coordinates(cell_[i]);
+    c[axis] += upward ? 1 : -1;
+    ParticleStore& p = s_.particles;
+    if (c[axis] < 0 || c[axis] >= cells_[axis]) {  // through a periodic face
+      const int k = c[axis] < 0 ? -1 : 1;
+      p.position[i][axis] -= k * s_.box.length(axis);
+      p.image[i][axis] += k;
+      c[axis] -= k * cells_[axis];
+    }
+    unlink(static_cast<int>(i));
+    cell_[i] = c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
+    link(static_cast<int>(i));
+  }
+
+  double kinetic_energy(std::uint32_t i) const {
+    const ParticleStore& p = s_.particles;
+    return 0.5 * p.mass[i] * norm2(p.velocity[i]) + 0.5 * norm2(p.angular_velocity[i]) / p.inv_inertia[i];
+  }
+
+  EdmdState s_;
+  std::array<int, 3> cells_{1, 1, 1};
+  Vec3 cell_size_;
+  std::vector<int> head_, next_, prev_, cell_;
+  std::vector<std::uint32_t> count_;
+  std::vector<double> last_collision_;  // s, for the TC model
+  std::vector<int> rolling_;            // wall a particle rolls on, -1 when free
+  RestitutionLaw elastic_;              // e = 1
+  std::vector<Event> event_;
+  std::vector<double> event_time_;
+  EventQueue queue_;
+  EventCounters counters_;
+};
+
+}  // namespace grainflow::edmd

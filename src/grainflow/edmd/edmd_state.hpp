@@ -1,0 +1,45 @@
+// Everything an event-driven run holds apart from its scheduling structures: particles (with
+// positions valid at each particle's own clock), box, gravity, walls and collision rules.
+#pragma once
+
+#include <vector>
+
+#include "grainflow/core/case_config.hpp"
+#include "grainflow/core/periodic_box.hpp"
+#include "grainflow/edmd/collision_rules.hpp"
+#include "grainflow/particles/particle_store.hpp"
+
+namespace grainflow::edmd {
+
+// A plane wall on one face of the box, moving at constant velocity (Couette walls slide along
+// the flow direction; the pressure servo changes the normal speed between events).
+struct EdmdWall {
+  int face = 0;
+  int axis = 0;
+  double inward = 1.0;          // +1 on a lo face, -1 on a hi face
+  double position = 0.0;        // m, plane coordinate at time `since`
+  double since = 0.0;           // s
+  Vec3 velocity;                // m/s; the normal component moves the plane
+  WallCondition condition = WallCondition::smooth;
+  RestitutionLaw restitution;
+  double at(double t) const { return position + velocity[axis] * (t - since); }
+};
+
+struct EdmdState {
+  int dimension = 3;
+  ParticleStore particles;      // positions and velocities at `clock` of each particle
+  std::vector<double> clock;    // s, each particle's own time (lazy advance)
+  PeriodicBox box;
+  Vec3 gravity;                 // m/s^2
+  double time = 0.0;            // s
+  std::vector<EdmdWall> walls;
+  RestitutionLaw restitution;   // particle-particle
+  double tangential_restitution = -1.0;
+  double rolling_speed = 0.0;     // m/s, wall rebounds slower than this roll (Campbell section 2.14.2)
+  double contact_duration = 0.0;  // s, TC model (Luding & McNamara): elastic within this time of a particle's last collision
+  std::vector<SpeciesConfig> species;
+};
+
+EdmdState build_edmd_state(const CaseConfig& c);
+
+}  // namespace grainflow::edmd
