@@ -30,6 +30,9 @@ struct EventCounters {
   double dissipated = 0.0;       // J lost in collisions
 };
 
+// Relative speeds below this fraction of the particles' speeds are round-off (see approaching()).
+inline constexpr double kVelocityResolution = 1e-10;
+
 template <int Dim>
 class EdmdEngine {
   static_assert(Dim == 2 || Dim == 3);
@@ -208,9 +211,10 @@ class EdmdEngine {
             const Vec3 aj = acceleration(static_cast<std::uint32_t>(j));
             const Vec3 xj = p.position[j] + dtj * p.velocity[j] + (0.5 * dtj * dtj) * aj + shift;
             const Vec3 vj = p.velocity[j] + dtj * aj;
+            const double floor = kVelocityResolution * (norm(vi) + norm(vj));
             const double t = (rolling_[i] < 0 && rolling_[j] < 0)
-                                 ? contact_time(xi - xj, vi - vj, ri + p.radius[j])
-                                 : contact_time_accelerated(xi - xj, vi - vj, ai - aj, ri + p.radius[j], best);
+                                 ? contact_time(xi - xj, vi - vj, ri + p.radius[j], floor)
+                                 : contact_time_accelerated(xi - xj, vi - vj, ai - aj, ri + p.radius[j], best, floor);
             if (t < best) {
               best = t;
               e = Event{Kind::pair, 0, static_cast<std::uint32_t>(j), count_[j]};
@@ -275,16 +279,30 @@ class EdmdEngine {
         }
         advance(i, s_.time);
         advance(j, s_.time);
+        // A collision needs approach. Round-off in a root taken at a touching, grazing pair can
+        // schedule one for a pair already separating: then there is nothing to resolve.
+        const Vec3 dr = s_.box.minimum_image(s_.particles.position[i], s_.particles.position[j]);
+        const Vec3 vi = s_.particles.velocity[i], vj = s_.particles.velocity[j];
+        if (!approaching(dr, vi - vj, kVelocityResolution * (norm(vi) + norm(vj)))) {
+          ++counters_.stale;
+          predict(j);
+          queue_.update(j);
+          break;
+        }
         rolling_[i] = rolling_[j] = -1;  // a particle collision ends rolling
         collide(i, j);
         predict(j);
         queue_.update(j);
         break;
       }
-      case Kind::wall:
+      case Kind::wall: {
         advance(i, s_.time);
-        collide_with_wall(i, e.detail);
+        const EdmdWall& wall = s_.walls[e.detail];
+        const double approach = wall.inward * (s_.particles.velocity[i][wall.axis] - wall.velocity[wall.axis]);
+        if (approach < 0.0) collide_with_wall(i, e.detail);
+        else start_rolling_if_slow(i, e.detail);  // touching and receding too slowly to leave it
         break;
+      }
       case Kind::cell:
         advance(i, s_.time);
         cross_cell(i, e.detail / 2, e.detail % 2 == 1);
@@ -304,7 +322,7 @@ class EdmdEngine {
     const bool recent = s_.time - last_collision_[i] < s_.contact_duration || s_.time - last_collision_[j] < s_.contact_duration;
     const Vec3 impulse = collide_pair({p.velocity[i], p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
                                       {p.velocity[j], p.angular_velocity[j], p.radius[j], p.inv_mass[j], p.inv_inertia[j]},
-                                      normal, recent ? elastic_ : s_.restitution, s_.tangential_restitution);
+                                      normal, recent ? elastic_ : s_.restitution, recent ? -1.0 : s_.tangential_restitution);
     last_collision_[i] = last_collision_[j] = s_.time;
     counters_.virial += dot(dr, impulse);
     counters_.dissipated += before - kinetic_energy(i) - kinetic_energy(j);
@@ -321,21 +339,27 @@ class EdmdEngine {
     const double before = kinetic_energy(i);
     const bool recent = s_.time - last_collision_[i] < s_.contact_duration;
     collide_wall({p.velocity[i], p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]}, normal,
-                 wall.velocity, recent ? elastic_ : wall.restitution, wall.condition);
+                 wall.velocity, recent ? elastic_ : wall.restitution, recent ? WallCondition::smooth : wall.condition);
     last_collision_[i] = s_.time;
     counters_.dissipated += before - kinetic_energy(i);
     ++count_[i];
     ++counters_.wall_collisions;
-    // Too slow to bounce (section 2.14.2): the particle rolls along the wall until its next
-    // particle collision; bouncing ever closer in time would stop the clock.
+    start_rolling_if_slow(i, w);
+  }
+
+  // Too slow to bounce (section 2.14.2): the particle rolls along the wall until its next particle
+  // collision; bouncing ever closer in time would stop the clock.
+  void start_rolling_if_slow(std::uint32_t i, int w) {
+    const EdmdWall& wall = s_.walls[w];
+    ParticleStore& p = s_.particles;
     const double rebound = wall.inward * (p.velocity[i][wall.axis] - wall.velocity[wall.axis]);
-    if (rebound < s_.rolling_speed && wall.velocity[wall.axis] == 0.0) {
-      p.velocity[i][wall.axis] = wall.velocity[wall.axis];
-      p.position[i][wall.axis] = wall.at(s_.time) + wall.inward * p.radius[i];
-      rolling_[i] = w;
-      roll_without_slip(i);
-      ++counters_.rolling_starts;
-    }
+    if (rebound >= s_.rolling_speed || wall.velocity[wall.axis] != 0.0) return;
+    p.velocity[i][wall.axis] = wall.velocity[wall.axis];
+    p.position[i][wall.axis] = wall.at(s_.time) + wall.inward * p.radius[i];
+    rolling_[i] = w;
+    roll_without_slip(i);
+    ++count_[i];
+    ++counters_.rolling_starts;
   }
 
   void cross_cell(std::uint32_t i, int axis, bool upward) {
@@ -366,7 +390,7 @@ class EdmdEngine {
   std::vector<std::uint32_t> count_;
   std::vector<double> last_collision_;  // s, for the TC model
   std::vector<int> rolling_;            // wall a particle rolls on, -1 when free
-  RestitutionLaw elastic_;              // e = 1
+  RestitutionLaw elastic_;              // e = 1: TC collisions are elastic and smooth (no dissipation at all)
   std::vector<Event> event_;
   std::vector<double> event_time_;
   EventQueue queue_;

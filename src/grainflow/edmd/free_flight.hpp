@@ -14,14 +14,25 @@ namespace grainflow::edmd {
 
 inline constexpr double kNever = std::numeric_limits<double>::infinity();
 
+// True when two touching particles close in faster than round-off resolves: the normal relative
+// speed must exceed 1e-9 of the relative speed (else the contact is grazing) and `speed_floor`
+// (the engine passes 1e-10 of the particles' speeds: below it an impulse is lost in the rounding
+// of their velocities). Such contacts exchange no momentum worth resolving; skipping them stops
+// endless zero-impulse "collisions" of neighbours sliding together at one instant.
+inline bool approaching(const Vec3& dr, const Vec3& dv, double speed_floor = 0.0) {
+  constexpr double kGrazing = 1e-9;
+  const double distance = std::sqrt(norm2(dr));
+  return dot(dr, dv) < -distance * std::max(kGrazing * std::sqrt(norm2(dv)), speed_floor);
+}
+
 // Time until |dr + dv t| = sigma for approaching spheres; 0 if they already overlap while
 // approaching (round-off), kNever if they miss or separate. Relative motion is linear: gravity
 // accelerates both alike. Uses t = c / (-b + sqrt(b^2 - a c)), which has no cancellation.
-inline double contact_time(const Vec3& dr, const Vec3& dv, double sigma) {
+inline double contact_time(const Vec3& dr, const Vec3& dv, double sigma, double speed_floor = 0.0) {
   const double b = dot(dr, dv);
   if (b >= 0.0) return kNever;  // moving apart (or tangent)
   const double c = norm2(dr) - sigma * sigma;
-  if (c <= 0.0) return 0.0;     // overlapping and approaching: collide now
+  if (c <= 0.0) return approaching(dr, dv, speed_floor) ? 0.0 : kNever;  // touching: collide now unless grazing
   const double a = norm2(dv);
   const double discriminant = b * b - a * c;
   if (discriminant <= 0.0) return kNever;
@@ -57,13 +68,14 @@ inline double closing_time(double gap, double rate, double accel) {
 // relative motion with an acceleration (a particle rolling on a wall against a free one). The
 // quartic f(t) = |.|^2 - sigma^2 is split at the roots of f'' and f' into monotonic pieces, and the
 // first piece on which f falls through zero is bisected: no complex arithmetic, no missed root.
-inline double contact_time_accelerated(const Vec3& dr, const Vec3& dv, const Vec3& da, double sigma, double horizon) {
+inline double contact_time_accelerated(const Vec3& dr, const Vec3& dv, const Vec3& da, double sigma, double horizon,
+                                       double speed_floor = 0.0) {
   // f(t) = c4 t^4 + c3 t^3 + c2 t^2 + c1 t + c0
   const double c4 = 0.25 * norm2(da), c3 = dot(dv, da), c2 = norm2(dv) + dot(dr, da), c1 = 2.0 * dot(dr, dv);
   const double c0 = norm2(dr) - sigma * sigma;
   auto f = [&](double t) { return (((c4 * t + c3) * t + c2) * t + c1) * t + c0; };
   auto f1 = [&](double t) { return ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1; };
-  if (c0 <= 0.0) return c1 < 0.0 ? 0.0 : kNever;  // overlapping: collide now if approaching
+  if (c0 <= 0.0) return approaching(dr, dv, speed_floor) ? 0.0 : kNever;  // touching: collide now unless grazing
   if (!(horizon > 0.0) || horizon == kNever) horizon = 1e300;
   // Roots of f'' = 12 c4 t^2 + 6 c3 t + 2 c2 in (0, horizon).
   std::vector<double> cuts{0.0};
