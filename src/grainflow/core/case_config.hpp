@@ -76,7 +76,8 @@ struct CollisionConfig {
   std::string restitution_law = "constant";  // constant | campbell (e = (1 + exp(-3 dv / velocity_scale)) / 2)
   double velocity_scale = 0.0;          // m/s, campbell law; 0 = sqrt(g R) of the first species
   double elastic_speed = 0.0;           // m/s, impacts slower than this are elastic (stops inelastic collapse)
-  double rolling_speed = 0.0;           // m/s, a wall rebound slower than this starts rolling (section 2.14.2)
+  double rolling_speed = 0.0;           // m/s, a wall rebound slower than this starts rolling (section 2.14.2);
+                                        // default 1e-4 sqrt(g R) under gravity, 0 without
   double contact_duration = 0.0;        // s, TC model: a collision within this time of a particle's last one is elastic
   double tangential_restitution = -1.0; // -1 smooth, 0 Campbell's rough rule, +1 elastic rough
   double wall_restitution = 1.0;        // default for walls

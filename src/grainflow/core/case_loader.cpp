@@ -179,7 +179,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
       r.fail("restitution_law", "must be \"constant\" or \"campbell\"");
     k.velocity_scale = r.number("velocity_scale", 0.0);
     if (k.velocity_scale < 0.0) r.fail("velocity_scale", "must not be negative");
-    k.rolling_speed = r.number("rolling_speed", 0.0);
+    // Campbell's listing rolls a particle whose wall rebound is below 1e-4 sqrt(g R); without a
+    // threshold a particle resting on a wall under gravity bounces ever faster until time stalls.
+    const double g = norm(c.gravity);
+    k.rolling_speed = r.number("rolling_speed", g > 0.0 ? 1e-4 * std::sqrt(g * 0.5 * c.species.front().diameter) : 0.0);
     if (k.rolling_speed < 0.0) r.fail("rolling_speed", "must not be negative");
     k.contact_duration = r.number("contact_duration", 0.0);
     if (k.contact_duration < 0.0) r.fail("contact_duration", "must not be negative");
