@@ -26,6 +26,7 @@ struct Row {
   long long collisions, wall_collisions, events;
   double pressure;      // over the interval ending at `time`: kinetic (instantaneous) + collisional
   double dissipated;    // J since the start
+  edmd::ServoState servo;
 };
 
 using EdmdVariant = std::variant<edmd::EdmdEngine<2>, edmd::EdmdEngine<3>>;
@@ -70,6 +71,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
     row.wall_collisions = k.wall_collisions;
     row.events = k.events;
     row.dissipated = k.dissipated;
+    row.servo = e.servo();
     const double span = st.time - last_time;
     const double kinetic = 2.0 * row.global.kinetic_energy;  // sum m v^2
     row.pressure = (kinetic + (span > 0.0 ? (k.virial - last_virial) / span : 0.0)) / (dim * measure);
@@ -126,12 +128,20 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
         io::write_atomically(dir + "/timeseries.csv", [&](std::ostream& out) {
           out << "# units: time s, energies J, granular_temperature m^2/s^2 (per degree of freedom), pressure "
               << (dim == 2 ? "N/m" : "Pa") << " (kinetic + collisional virial over the interval), dissipated J\n";
+          const bool servo = c.servo.enabled;
+          if (servo) out << "# servo: gap and width m, wall_speed m/s (> 0 opening), wall_stress as pressure, top_speed m/s\n";
           out << "time,kinetic_energy,rotational_energy,granular_temperature,collisions,wall_collisions,events,pressure,"
-                 "dissipated\n";
-          for (const auto& r : rows)
+                 "dissipated"
+              << (servo ? ",gap,width,wall_speed,wall_stress,top_speed" : "") << "\n";
+          for (const auto& r : rows) {
             out << r.time << ',' << r.global.kinetic_energy << ',' << r.global.rotational_energy << ','
                 << r.global.granular_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.events
-                << ',' << r.pressure << ',' << r.dissipated << '\n';
+                << ',' << r.pressure << ',' << r.dissipated;
+            if (servo)
+              out << ',' << r.servo.gap << ',' << r.servo.width << ',' << r.servo.wall_speed << ','
+                  << r.servo.measured_stress << ',' << r.servo.top_speed;
+            out << '\n';
+          }
         });
         write_final_state(dir + "/final_state.csv", st.particles, st.species);
 
@@ -165,6 +175,11 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
         summary.number("rotational_energy", global.rotational_energy);
         summary.number("granular_temperature", temperature > 0.0 ? temperature : global.granular_temperature * 3.0 / dim);
         summary.number("dissipated_energy", k.dissipated);
+        if (c.servo.enabled) {
+          summary.integer("servo_updates", k.servo_updates);
+          summary.number("wall_gap", e.servo().gap);
+          summary.number("cell_width", e.servo().width);
+        }
         summary.strings("errors", errors);
         summary.strings("warnings", warnings);
         io::write_atomically(dir + "/summary.json", [&](std::ostream& out) { summary.write(out); });

@@ -84,6 +84,17 @@ struct CollisionConfig {
   double inertia_factor = 0.0;          // q = (k/R)^2; 0 = 0.5 (discs) in 2D, 0.4 (solid spheres) in 3D
 };
 
+// Pressure-controlled Couette walls (Campbell 1982 section 2.14.3, listing COL002): the walls at
+// ylo and yhi move apart or together so the measured normal stress approaches its target.
+struct ServoConfig {
+  bool enabled = false;
+  double normal_stress = 0.0;        // target, N/m in 2D (force per length), Pa in 3D
+  bool keep_shear_rate = true;       // top wall speed follows the gap: U_T / H stays at its start value
+  bool scale_width = true;           // periodic width follows the gap: the aspect ratio stays fixed
+  long long every_collisions = 0;    // update after this many collisions; 0 = 3 N
+  double gap_change = 0.0;           // m, or after this gap change; 0 = 0.1 R
+};
+
 struct WallConfig {
   double restitution = -1.0;  // walton_braun; < 0: the particles' value (also for the bumps)
   double friction = -1.0;     // < 0: the particles' value (also for the bumps)
@@ -141,6 +152,7 @@ struct CaseConfig {
   ParticlesConfig particles;
   ContactConfig contact;
   CollisionConfig collision;
+  ServoConfig servo;
   std::array<WallConfig, 6> walls;
   DriveConfig drive;
   RunConfig run;

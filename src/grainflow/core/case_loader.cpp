@@ -239,6 +239,24 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     }
     walls.reject_unknown_keys();
   }
+  if (top.has("servo")) {
+    TomlReader r = top.table("servo");
+    auto& v = c.servo;
+    if (c.engine.kind != "edmd") top.fail("servo", "the pressure-controlled Couette cell is an event-driven (edmd) feature");
+    v.enabled = true;
+    v.normal_stress = r.required_number("normal_stress");
+    if (!(v.normal_stress > 0.0)) r.fail("normal_stress", "must be positive");
+    v.keep_shear_rate = r.boolean("keep_shear_rate", true);
+    v.scale_width = r.boolean("scale_width", true);
+    v.every_collisions = r.integer("every_collisions", 0);
+    if (v.every_collisions < 0) r.fail("every_collisions", "must not be negative");
+    v.gap_change = r.number("gap_change", 0.0);
+    if (v.gap_change < 0.0) r.fail("gap_change", "must not be negative");
+    if (c.domain.faces[2] != FaceKind::wall || c.domain.faces[3] != FaceKind::wall)
+      r.fail("normal_stress", "the servo moves the walls at ylo and yhi: both must be \"wall\"");
+    if (!c.domain.periodic(0)) r.fail("scale_width", "the Couette cell needs a periodic x axis (the flow direction)");
+    r.reject_unknown_keys();
+  }
   if (top.has("drive") && c.engine.kind == "edmd")
     top.fail("drive", "vibrating drives are for the DEM engine; event-driven walls move at constant velocity");
   if (top.has("drive")) {

@@ -28,6 +28,16 @@ struct EventCounters {
   long long rolling_starts = 0;  // wall rebounds too slow to bounce: the particle rolls
   double virial = 0.0;           // sum over collisions of r_ij . J_i (kg m^2/s), for the pressure
   double dissipated = 0.0;       // J lost in collisions
+  long long servo_updates = 0;   // pressure-servo wall speed changes
+};
+
+// The pressure-controlled Couette cell as last measured (section 2.14.3).
+struct ServoState {
+  double gap = 0.0;              // m, distance between the wall planes
+  double width = 0.0;            // m, periodic control-volume width
+  double wall_speed = 0.0;       // m/s, opening speed of each wall (> 0 apart)
+  double measured_stress = 0.0;  // N/m (2D) or Pa (3D), mean normal stress on the walls over the last period
+  double top_speed = 0.0;        // m/s, tangential speed of the top wall
 };
 
 // Relative speeds below this fraction of the particles' speeds are round-off (see approaching()).
@@ -47,22 +57,12 @@ class EdmdEngine {
     rolling_.assign(n, -1);
     event_.assign(n, Event{});
     event_time_.assign(n, kNever);
-    double max_diameter = 0.0;
-    for (double r : p.radius) max_diameter = std::max(max_diameter, 2.0 * r);
-    for (int a = 0; a < 3; ++a) {
-      cells_[a] = a < Dim ? std::max(1, static_cast<int>(std::floor(s_.box.length(a) / max_diameter))) : 1;
-      cells_[a] = std::min(cells_[a], 1 << 11);
-      cell_size_[a] = s_.box.length(a) / cells_[a];
-    }
-    head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2], -1);
-    next_.assign(n, -1);
-    prev_.assign(n, -1);
-    cell_.assign(n, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      s_.box.wrap(s_.particles.position[i], s_.particles.image[i]);
-      cell_[i] = cell_of(s_.particles.position[i]);
-      link(static_cast<int>(i));
-    }
+    for (double r : p.radius) max_diameter_ = std::max(max_diameter_, 2.0 * r);
+    width_ref_ = s_.box.length(0);
+    width_since_ = s_.time;
+    wall_normal_impulse_.assign(s_.walls.size(), 0.0);
+    if (s_.servo.enabled) start_servo();
+    build_grid();
     for (std::size_t i = 0; i < n; ++i) predict(static_cast<std::uint32_t>(i));
     queue_.reset(n, &event_time_);
   }
@@ -72,6 +72,7 @@ class EdmdEngine {
   EventCounters& counters() { return counters_; }
   // Time of the event scheduled for particle i (infinite when none).
   double scheduled_time(std::size_t i) const { return event_time_[i]; }
+  const ServoState& servo() const { return servo_state_; }
 
   // Processes every event up to time `t_end`, then brings all particles to `t_end`.
   void advance_to(double t_end) {
@@ -94,15 +95,19 @@ class EdmdEngine {
                        "so that very slow impacts are elastic)");
       }
       s_.time = t;
+      update_width();
       process(i);
+      if (s_.servo.enabled && servo_due()) servo_update();
     }
     synchronize(t_end);
   }
 
   // Brings every particle to time t (no event may lie before t).
   void synchronize(double t) {
-    for (std::size_t i = 0; i < s_.particles.size(); ++i) advance(static_cast<std::uint32_t>(i), t);
     s_.time = t;
+    update_width();
+    for (std::size_t i = 0; i < s_.particles.size(); ++i) advance(static_cast<std::uint32_t>(i), t);
+    if (s_.servo.enabled) servo_state_.gap = gap_at(t);
   }
 
   // Re-schedules every particle (after walls changed their motion).
@@ -123,11 +128,39 @@ class EdmdEngine {
     std::uint32_t partner_count = 0; // partner's trajectory counter when predicted
   };
 
+  // Cells at least a diameter wide; with a shrinking periodic width, 10% spare so the grid lasts.
+  void build_grid() {
+    const std::size_t n = s_.particles.size();
+    const double margin = s_.servo.enabled && s_.servo.scale_width ? 1.1 : 1.0;
+    for (int a = 0; a < 3; ++a) {
+      cells_[a] = a < Dim ? std::max(1, static_cast<int>(std::floor(s_.box.length(a) / (margin * max_diameter_)))) : 1;
+      cells_[a] = std::min(cells_[a], 1 << 11);
+      cell_size_[a] = s_.box.length(a) / cells_[a];
+    }
+    head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2], -1);
+    next_.assign(n, -1);
+    prev_.assign(n, -1);
+    cell_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      s_.box.wrap(s_.particles.position[i], s_.particles.image[i]);
+      cell_[i] = cell_of(s_.particles.position[i]);
+      link(static_cast<int>(i));
+    }
+  }
+
   int cell_of(const Vec3& x) const {
     int c[3] = {0, 0, 0};
     for (int a = 0; a < Dim; ++a)
       c[a] = std::clamp(static_cast<int>(std::floor((x[a] - s_.box.lo[a]) / cell_size_[a])), 0, cells_[a] - 1);
     return c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
+  }
+
+  // The periodic width of a Couette cell whose width follows its gap: L(t) = L_ref + L' (t - t_ref).
+  double width_at(double t) const { return width_ref_ + width_rate_ * (t - width_since_); }
+  void update_width() {
+    if (width_rate_ == 0.0) return;
+    s_.box.hi.x = s_.box.lo.x + width_at(s_.time);
+    cell_size_[0] = s_.box.length(0) / cells_[0];
   }
   std::array<int, 3> cell_coordinates(int cell) const {
     return {cell % cells_[0], (cell / cells_[0]) % cells_[1], cell / (cells_[0] * cells_[1])};
@@ -205,12 +238,13 @@ class EdmdEngine {
           int cx = ci[0] + dx, sx = 0;
           if (!wrap_cell(0, cx, sx)) continue;
           const Vec3 shift{sx * s_.box.length(0), sy * s_.box.length(1), sz * s_.box.length(2)};
+          const Vec3 shift_velocity{sx * width_rate_, 0.0, 0.0};  // images move with the width rate
           for (int j = head_[cx + cells_[0] * (cy + cells_[1] * cz)]; j >= 0; j = next_[j]) {
             if (static_cast<std::uint32_t>(j) == i) continue;
             const double dtj = now - s_.clock[j];
             const Vec3 aj = acceleration(static_cast<std::uint32_t>(j));
             const Vec3 xj = p.position[j] + dtj * p.velocity[j] + (0.5 * dtj * dtj) * aj + shift;
-            const Vec3 vj = p.velocity[j] + dtj * aj;
+            const Vec3 vj = p.velocity[j] + dtj * aj + shift_velocity;
             const double floor = kVelocityResolution * (norm(vi) + norm(vj));
             const double t = (rolling_[i] < 0 && rolling_[j] < 0)
                                  ? contact_time(xi - xj, vi - vj, ri + p.radius[j], floor)
@@ -239,15 +273,18 @@ class EdmdEngine {
       if (cells_[a] == 1 && !periodic) continue;
       const double face_lo = s_.box.lo[a] + ci[a] * cell_size_[a];
       const double face_hi = ci[a] + 1 == cells_[a] ? s_.box.hi[a] : face_lo + cell_size_[a];
+      // Faces along x stretch with the periodic width (Couette servo); elsewhere they stand still.
+      const double rate_lo = a == 0 ? width_rate_ * ci[a] / cells_[a] : 0.0;
+      const double rate_hi = a == 0 ? width_rate_ * (ci[a] + 1) / cells_[a] : 0.0;
       if (ci[a] > 0 || periodic) {
-        const double t = closing_time(xi[a] - face_lo, vi[a], ai[a]);
+        const double t = closing_time(xi[a] - face_lo, vi[a] - rate_lo, ai[a]);
         if (t < best) {
           best = t;
           e = Event{Kind::cell, static_cast<std::int8_t>(a * 2), 0, 0};
         }
       }
       if (ci[a] + 1 < cells_[a] || periodic) {
-        const double t = closing_time(face_hi - xi[a], -vi[a], -ai[a]);
+        const double t = closing_time(face_hi - xi[a], rate_hi - vi[a], -ai[a]);
         if (t < best) {
           best = t;
           e = Event{Kind::cell, static_cast<std::int8_t>(a * 2 + 1), 0, 0};
@@ -314,6 +351,74 @@ class EdmdEngine {
     queue_.update(i);
   }
 
+  double gap_at(double t) const {
+    return s_.walls[top_wall_].at(t) - s_.walls[bottom_wall_].at(t);
+  }
+
+  void start_servo() {
+    for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+      if (s_.walls[w].face == 2) bottom_wall_ = static_cast<int>(w);
+      if (s_.walls[w].face == 3) top_wall_ = static_cast<int>(w);
+    }
+    const double gap = gap_at(s_.time);
+    aspect_ = s_.box.length(0) / gap;
+    shear_rate_ = (s_.walls[top_wall_].velocity.x - s_.walls[bottom_wall_].velocity.x) / gap;
+    servo_since_ = s_.time;
+    servo_gap_ = gap;
+    servo_state_.gap = gap;
+    servo_state_.width = s_.box.length(0);
+    servo_state_.top_speed = s_.walls[top_wall_].velocity.x;
+  }
+
+  bool servo_due() const {
+    return counters_.collisions - servo_collisions_ >= s_.servo.every_collisions ||
+           std::fabs(gap_at(s_.time) - servo_gap_) >= s_.servo.gap_change;
+  }
+
+  // Listing COL002: v <- v/2 + (sigma_measured - sigma_target), in Campbell's units (U_T for speeds,
+  // m U_T^2 / R^2 for 2D stresses), clipped to +-sigma_target; both walls move, the width follows
+  // the gap, the top wall speed keeps U_T / H, and every particle is re-predicted.
+  void servo_update() {
+    const double now = s_.time;
+    const double span = now - servo_since_;
+    if (span <= 0.0) return;
+    double area = s_.box.length(0);
+    if (Dim == 3) area *= s_.box.length(2);
+    const double stress =
+        0.5 * (wall_normal_impulse_[bottom_wall_] + wall_normal_impulse_[top_wall_]) / (span * area);
+    const double target = s_.servo.normal_stress / s_.stress_unit;
+    double speed = 0.5 * servo_state_.wall_speed / s_.speed_unit + (stress / s_.stress_unit - target);
+    speed = std::clamp(speed, -target, target) * s_.speed_unit;
+    synchronize(now);
+    const double gap = gap_at(now);
+    for (int w : {bottom_wall_, top_wall_}) {
+      EdmdWall& wall = s_.walls[w];
+      wall.position = wall.at(now);
+      wall.since = now;
+      wall.velocity.y = w == bottom_wall_ ? -speed : speed;
+    }
+    if (s_.servo.keep_shear_rate) s_.walls[top_wall_].velocity.x = s_.walls[bottom_wall_].velocity.x + shear_rate_ * gap;
+    if (s_.servo.scale_width) {
+      width_ref_ = width_at(now);
+      width_since_ = now;
+      width_rate_ = aspect_ * 2.0 * speed;
+      update_width();
+      if (cell_size_[0] < max_diameter_) {  // the grid no longer spans a diameter per cell: rebuild it
+        build_grid();
+      }
+    }
+    servo_state_ = {gap, s_.box.length(0), speed, stress, s_.walls[top_wall_].velocity.x};
+    std::fill(wall_normal_impulse_.begin(), wall_normal_impulse_.end(), 0.0);
+    servo_since_ = now;
+    servo_gap_ = gap;
+    servo_collisions_ = counters_.collisions;
+    ++counters_.servo_updates;
+    for (std::size_t i = 0; i < s_.particles.size(); ++i) {
+      predict(static_cast<std::uint32_t>(i));
+      queue_.update(static_cast<std::uint32_t>(i));
+    }
+  }
+
   void collide(std::uint32_t i, std::uint32_t j) {
     ParticleStore& p = s_.particles;
     const Vec3 dr = s_.box.minimum_image(p.position[i], p.position[j]);
@@ -338,8 +443,10 @@ class EdmdEngine {
     normal[wall.axis] = wall.inward;
     const double before = kinetic_energy(i);
     const bool recent = s_.time - last_collision_[i] < s_.contact_duration;
-    collide_wall({p.velocity[i], p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]}, normal,
-                 wall.velocity, recent ? elastic_ : wall.restitution, recent ? WallCondition::smooth : wall.condition);
+    const Vec3 impulse = collide_wall({p.velocity[i], p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
+                                      normal, wall.velocity, recent ? elastic_ : wall.restitution,
+                                      recent ? WallCondition::smooth : wall.condition);
+    wall_normal_impulse_[w] += dot(impulse, normal);
     last_collision_[i] = s_.time;
     counters_.dissipated += before - kinetic_energy(i);
     ++count_[i];
@@ -372,6 +479,10 @@ class EdmdEngine {
       p.position[i][axis] -= k * s_.box.length(axis);
       p.image[i][axis] += k;
       c[axis] -= k * cells_[axis];
+      if (axis == 0 && width_rate_ != 0.0) {
+        p.velocity[i].x -= k * width_rate_;  // it becomes its image, which moves with the width rate
+        ++count_[i];
+      }
     }
     unlink(static_cast<int>(i));
     cell_[i] = c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
@@ -389,6 +500,14 @@ class EdmdEngine {
   std::vector<int> head_, next_, prev_, cell_;
   std::vector<std::uint32_t> count_;
   std::vector<double> last_collision_;  // s, for the TC model
+  double max_diameter_ = 0.0;
+  double width_ref_ = 0.0, width_rate_ = 0.0, width_since_ = 0.0;  // periodic width L(t), Couette servo
+  std::vector<double> wall_normal_impulse_;  // kg m/s into each wall since the last servo update
+  int bottom_wall_ = -1, top_wall_ = -1;
+  double aspect_ = 0.0, shear_rate_ = 0.0;
+  double servo_since_ = 0.0, servo_gap_ = 0.0;
+  long long servo_collisions_ = 0;
+  ServoState servo_state_;
   std::vector<int> rolling_;            // wall a particle rolls on, -1 when free
   RestitutionLaw elastic_;              // e = 1: TC collisions are elastic and smooth (no dissipation at all)
   std::vector<Event> event_;

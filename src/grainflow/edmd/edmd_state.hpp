@@ -38,6 +38,9 @@ struct EdmdState {
   double rolling_speed = 0.0;     // m/s, wall rebounds slower than this roll (Campbell section 2.14.2)
   double contact_duration = 0.0;  // s, TC model (Luding & McNamara): elastic within this time of a particle's last collision
   std::vector<SpeciesConfig> species;
+  ServoConfig servo;              // pressure-controlled Couette walls, when enabled
+  double stress_unit = 1.0;       // m U_T^2 / R^2 (2D) or / R^3 (3D): Campbell's stress scale for the servo
+  double speed_unit = 1.0;        // m/s, U_T at the start
 };
 
 EdmdState build_edmd_state(const CaseConfig& c);
