@@ -29,5 +29,12 @@ else
   rate "chute_hooke (gran/hooke/history), 2 threads" cases/bench/chute_hooke.toml --threads 2
   rate "chute_walton_braun (friction 0.5), 1 thread" cases/bench/chute_walton_braun.toml --threads 1
 fi
+echo "== event-driven: 32,000 elastic hard spheres, packing fraction 0.45 (cases/bench/hard_spheres.toml) =="
+edmd_rates=()
+for ((r = 0; r < RUNS; ++r)); do
+  "$BIN" run cases/bench/hard_spheres.toml -o "$out/edmd" --quiet >/dev/null
+  edmd_rates+=("$(/usr/bin/python3 -c "import json; print(json.load(open('$out/edmd/summary.json'))['collisions_per_second'])")")
+done
+printf '%s\n' "${edmd_rates[@]}" | median | awk '{printf "%-52s %8.3f M collisions/s\n", "hard_spheres, 1 thread", $1/1e6}'
 echo "== micro benchmarks =="
 build/release/bench/micro_kernels --benchmark_min_time=0.2
