@@ -78,7 +78,8 @@ struct CollisionConfig {
   double elastic_speed = 0.0;           // m/s, impacts slower than this are elastic (stops inelastic collapse)
   double rolling_speed = 0.0;           // m/s, a wall rebound slower than this starts rolling (section 2.14.2);
                                         // default 1e-4 sqrt(g R) under gravity, 0 without
-  double contact_duration = 0.0;        // s, TC model: a collision within this time of a particle's last one is elastic
+  double contact_duration = 0.0;        // s, TC model: a collision within this time of a particle's last one is
+                                        // elastic; default 1e-4 sqrt(R/g) under gravity, 0 without
   double tangential_restitution = -1.0; // -1 smooth, 0 Campbell's rough rule, +1 elastic rough
   double wall_restitution = 1.0;        // default for walls
   double inertia_factor = 0.0;          // q = (k/R)^2; 0 = 0.5 (discs) in 2D, 0.4 (solid spheres) in 3D

@@ -184,7 +184,9 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     const double g = norm(c.gravity);
     k.rolling_speed = r.number("rolling_speed", g > 0.0 ? 1e-4 * std::sqrt(g * 0.5 * c.species.front().diameter) : 0.0);
     if (k.rolling_speed < 0.0) r.fail("rolling_speed", "must not be negative");
-    k.contact_duration = r.number("contact_duration", 0.0);
+    // Under gravity a particle pressed onto a rolling one would otherwise meet it ever more gently at
+    // one instant; the TC model (elastic within contact_duration) keeps them apart. 1e-4 sqrt(R/g).
+    k.contact_duration = r.number("contact_duration", g > 0.0 ? 1e-4 * std::sqrt(0.5 * c.species.front().diameter / g) : 0.0);
     if (k.contact_duration < 0.0) r.fail("contact_duration", "must not be negative");
     k.elastic_speed = r.number("elastic_speed", 0.0);
     if (k.elastic_speed < 0.0) r.fail("elastic_speed", "must not be negative");
@@ -216,8 +218,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
       if (w.condition != "smooth" && w.condition != "rough" && w.condition != "no_slip")
         r.fail("condition", "must be \"smooth\", \"rough\" or \"no_slip\"");
       w.restitution = r.number("restitution", -1.0);
-      if (r.has("restitution") && !(w.restitution > 0.0 && w.restitution <= 1.0))
-        r.fail("restitution", "must lie in (0, 1]");
+      // A hard wall may be perfectly plastic (e = 0); a soft-sphere wall needs a finite K2.
+      const double lowest = edmd ? 0.0 : std::nextafter(0.0, 1.0);
+      if (r.has("restitution") && !(w.restitution >= lowest && w.restitution <= 1.0))
+        r.fail("restitution", edmd ? "must lie in [0, 1]" : "must lie in (0, 1]");
       w.friction = r.number("friction", -1.0);
       if (r.has("friction") && w.friction < 0.0) r.fail("friction", "must not be negative");
       w.gamma_n = r.number("gamma_n", -1.0);

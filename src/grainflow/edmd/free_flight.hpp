@@ -72,10 +72,15 @@ inline double contact_time_accelerated(const Vec3& dr, const Vec3& dv, const Vec
                                        double speed_floor = 0.0) {
   // f(t) = c4 t^4 + c3 t^3 + c2 t^2 + c1 t + c0
   const double c4 = 0.25 * norm2(da), c3 = dot(dv, da), c2 = norm2(dv) + dot(dr, da), c1 = 2.0 * dot(dr, dv);
-  const double c0 = norm2(dr) - sigma * sigma;
+  double c0 = norm2(dr) - sigma * sigma;
   auto f = [&](double t) { return (((c4 * t + c3) * t + c2) * t + c1) * t + c0; };
   auto f1 = [&](double t) { return ((4.0 * c4 * t + 3.0 * c3) * t + 2.0 * c2) * t + c1; };
-  if (c0 <= 0.0) return approaching(dr, dv, speed_floor) ? 0.0 : kNever;  // touching: collide now unless grazing
+  if (c0 <= 0.0) {
+    if (approaching(dr, dv, speed_floor)) return 0.0;
+    // Touching (or overlapping by round-off) but not approaching now: the relative acceleration may
+    // bring them back together later, so look for that return as closing_time() does for planes.
+    c0 = 0.0;
+  }
   if (!(horizon > 0.0) || horizon == kNever) horizon = 1e300;
   // Roots of f'' = 12 c4 t^2 + 6 c3 t + 2 c2 in (0, horizon).
   std::vector<double> cuts{0.0};

@@ -200,7 +200,7 @@ EdmdState build_edmd_state(const CaseConfig& c) {
     wall.condition = w.condition == "rough" ? WallCondition::rough
                      : w.condition == "no_slip" ? WallCondition::no_slip : WallCondition::smooth;
     wall.restitution = law;
-    wall.restitution.value = w.restitution > 0.0 ? w.restitution : c.collision.wall_restitution;
+    wall.restitution.value = w.restitution >= 0.0 ? w.restitution : c.collision.wall_restitution;
     s.walls.push_back(wall);
   }
   s.servo = c.servo;
