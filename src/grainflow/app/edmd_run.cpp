@@ -1,6 +1,7 @@
 #include "grainflow/app/edmd_run.hpp"
 
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -30,6 +31,7 @@ struct Row {
 };
 
 using EdmdVariant = std::variant<edmd::EdmdEngine<2>, edmd::EdmdEngine<3>>;
+constexpr double kNeverTime = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
@@ -44,9 +46,13 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   std::optional<io::PvdSeries> snapshots;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
 
-  // Box measure: area in 2D, volume in 3D.
+  // Box measure: area in 2D, volume in 3D; a Couette cell's follows its walls and width.
   double measure = 1.0;
   for (int a = 0; a < dim; ++a) measure *= c.domain.length(a);
+  auto current_measure = [&](const auto& e) {
+    if (!c.servo.enabled) return measure;
+    return e.servo().gap * e.servo().width * (dim == 3 ? c.domain.length(2) : 1.0);
+  };
   const int gravity_axis = std::fabs(c.gravity.x) > std::fabs(c.gravity.y) ? 0 : 1;
 
   std::vector<Row> rows;
@@ -73,8 +79,10 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
     row.dissipated = k.dissipated;
     row.servo = e.servo();
     const double span = st.time - last_time;
-    const double kinetic = 2.0 * row.global.kinetic_energy;  // sum m v^2
-    row.pressure = (kinetic + (span > 0.0 ? (k.virial - last_virial) / span : 0.0)) / (dim * measure);
+    // Kinetic part from velocities about the mass-mean one (as the temperature), so a mean flow is
+    // not counted as pressure: sum m v'^2 = d M T.
+    const double kinetic = dim * row.global.mass * row.global.granular_temperature;
+    row.pressure = (kinetic + (span > 0.0 ? (k.virial - last_virial) / span : 0.0)) / (dim * current_measure(e));
     if (st.time > c.output.average_start && span > 0.0) {
       average_kinetic += kinetic;
       average_temperature += row.global.granular_temperature;
@@ -93,18 +101,28 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
         [&](auto& e) {
           record(e);
           if (snapshots) snapshots->add(e.state().particles, e.state().time);
-          double next_snapshot = c.output.snapshot_interval;
-          for (long k = 1;; ++k) {
-            const double t = std::min(end_time, k * c.output.interval);
-            e.advance_to(t);
-            record(e);
-            progress.update(t);
-            while (snapshots && next_snapshot <= t * (1.0 + 1e-12)) {
-              snapshots->add(e.state().particles, e.state().time);
-              next_snapshot += c.output.snapshot_interval;
+          // Rows and snapshots each on their own exact grid k * interval: advance to whichever is next.
+          long row = 1, shot = 1;
+          try {
+            while (true) {
+              const double next_row = std::min(end_time, row * c.output.interval);
+              const double next_shot = snapshots ? shot * c.output.snapshot_interval : kNeverTime;
+              const double t = std::min(next_row, next_shot);
+              e.advance_to(t);
+              if (snapshots && next_shot <= t) {
+                snapshots->add(e.state().particles, e.state().time);
+                ++shot;
+              }
+              if (next_row > t) continue;
+              ++row;
+              record(e);
+              progress.update(t);
+              if (t >= end_time) break;
+              if (c.run.collisions > 0 && e.counters().collisions >= c.run.collisions) break;
             }
-            if (t >= end_time) break;
-            if (c.run.collisions > 0 && e.counters().collisions >= c.run.collisions) break;
+          } catch (const RunError&) {
+            e.synchronize(e.state().time);  // the outputs show every particle at one instant
+            throw;
           }
         },
         engine);
@@ -145,12 +163,13 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
         });
         write_final_state(dir + "/final_state.csv", st.particles, st.species);
 
-        const double number_density = n / measure;
+        const double volume = current_measure(e);
+        const double number_density = n / volume;
         const double mean_mass = rows.empty() || rows.back().global.mass == 0.0 ? 0.0 : rows.back().global.mass / n;
         double pressure = 0.0, temperature = 0.0;
         if (average_rows > 0 && average_span > 0.0) {
           temperature = average_temperature / average_rows;
-          pressure = (average_kinetic / average_rows + average_virial / average_span) / (dim * measure);
+          pressure = (average_kinetic / average_rows + average_virial / average_span) / (dim * volume);
         }
         const auto global = observe::sample_global(st.particles, gravity_axis);
         io::JsonObject summary;
@@ -168,7 +187,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
         summary.number("events_per_second", wall_seconds > 0.0 ? k.events / wall_seconds : 0.0);
         summary.number("collisions_per_second", wall_seconds > 0.0 ? k.collisions / wall_seconds : 0.0);
         summary.number("pressure", pressure);
-        summary.number("packing_fraction", solids / measure);
+        summary.number("packing_fraction", solids / volume);
         summary.number("compressibility_factor",
                        temperature > 0.0 && mean_mass > 0.0 ? pressure / (number_density * mean_mass * temperature) : 0.0);
         summary.number("kinetic_energy", global.kinetic_energy);

@@ -136,14 +136,17 @@ void validate_edmd(const CaseConfig& c) {
   }
   if (total == 0) fail(c, "species.count", "no particles to simulate");
   if (total > 200'000'000) fail(c, "species.count", "more than 2e8 particles cannot run on one machine");
-  if (dim == 2 && (c.gravity.z != 0.0 || c.particles.initial_velocity.z != 0.0))
-    fail(c, "gravity.vector", "in 2D (discs in the x-y plane) the z components must be 0");
+  if (dim == 2 && c.gravity.z != 0.0) fail(c, "gravity.vector", "in 2D (discs in the x-y plane) the z component must be 0");
+  if (dim == 2 && c.particles.initial_velocity.z != 0.0)
+    fail(c, "particles.initial_velocity", "in 2D (discs in the x-y plane) the z component must be 0");
+  if (c.servo.enabled && c.walls[3].velocity == c.walls[2].velocity)
+    fail(c, "walls.yhi.velocity", "the Couette servo needs the walls to move relative to each other (U_T sets its units)");
   for (int axis = 0; axis < dim; ++axis)
     if (c.domain.periodic(axis) && c.domain.length(axis) < 2.0 * max_diameter)
       fail(c, "domain.hi", std::string("periodic axis ") + "xyz"[axis] + " must be at least two diameters long");
   for (int f = 0; f < 6; ++f)
     if (c.domain.faces[f] == FaceKind::bumpy) fail(c, "domain.boundary", "bumpy walls are a DEM feature");
-  if (c.particles.initial_profile == "couette" && c.domain.faces[3] != FaceKind::wall)
+  if (c.particles.initial_profile == "couette" && (c.domain.faces[2] != FaceKind::wall || c.domain.faces[3] != FaceKind::wall))
     fail(c, "particles.initial_profile", "the couette profile needs walls at ylo and yhi");
   if (c.particles.init != "file") {
     const Vec3 lo = c.particles.region_lo.value_or(c.domain.lo), hi = c.particles.region_hi.value_or(c.domain.hi);

@@ -107,7 +107,10 @@ class EdmdEngine {
     s_.time = t;
     update_width();
     for (std::size_t i = 0; i < s_.particles.size(); ++i) advance(static_cast<std::uint32_t>(i), t);
-    if (s_.servo.enabled) servo_state_.gap = gap_at(t);
+    if (s_.servo.enabled) {
+      servo_state_.gap = gap_at(t);
+      servo_state_.width = s_.box.length(0);
+    }
   }
 
   // Re-schedules every particle (after walls changed their motion).
