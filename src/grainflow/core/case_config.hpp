@@ -154,6 +154,7 @@ struct CaseConfig {
   ContactConfig contact;
   CollisionConfig collision;
   ServoConfig servo;
+  double lees_edwards_rate = 0.0;  // 1/s, [lees_edwards] shear_rate: unbounded simple shear (edmd)
   std::array<WallConfig, 6> walls;
   DriveConfig drive;
   RunConfig run;

@@ -261,6 +261,15 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (!c.domain.periodic(0)) r.fail("scale_width", "the Couette cell needs a periodic x axis (the flow direction)");
     r.reject_unknown_keys();
   }
+  if (top.has("lees_edwards")) {
+    TomlReader r = top.table("lees_edwards");
+    if (c.engine.kind != "edmd") top.fail("lees_edwards", "Lees–Edwards boundaries are an event-driven (edmd) feature");
+    c.lees_edwards_rate = r.required_number("shear_rate");
+    if (c.lees_edwards_rate == 0.0) r.fail("shear_rate", "must not be zero (drop [lees_edwards] for a plain periodic box)");
+    if (!c.domain.periodic(0) || !c.domain.periodic(1))
+      r.fail("shear_rate", "Lees–Edwards boundaries need periodic x (flow) and y (gradient) axes");
+    r.reject_unknown_keys();
+  }
   if (top.has("drive") && c.engine.kind == "edmd")
     top.fail("drive", "vibrating drives are for the DEM engine; event-driven walls move at constant velocity");
   if (top.has("drive")) {

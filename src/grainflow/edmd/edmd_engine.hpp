@@ -62,6 +62,7 @@ class EdmdEngine {
     width_since_ = s_.time;
     wall_normal_impulse_.assign(s_.walls.size(), 0.0);
     if (s_.servo.enabled) start_servo();
+    shear_velocity_ = s_.lees_edwards_rate * s_.box.length(1);
     build_grid();
     for (std::size_t i = 0; i < n; ++i) predict(static_cast<std::uint32_t>(i));
     queue_.reset(n, &event_time_);
@@ -230,6 +231,32 @@ class EdmdEngine {
     const double ri = p.radius[i];
     // Partners in the neighboring cells (periodic images through shifted cells).
     const auto ci = cell_coordinates(cell_[i]);
+    // Partners in one cell seen through an image shift; `x_images` also tries the neighboring
+    // images along x (a Lees–Edwards row slides by an arbitrary offset, so the nearest image now
+    // need not be the one met first).
+    auto consider = [&](int cell, const Vec3& shift, const Vec3& shift_velocity, bool x_images) {
+      for (int j = head_[cell]; j >= 0; j = next_[j]) {
+        if (static_cast<std::uint32_t>(j) == i) continue;
+        const double dtj = now - s_.clock[j];
+        const Vec3 aj = acceleration(static_cast<std::uint32_t>(j));
+        const Vec3 xj = p.position[j] + dtj * p.velocity[j] + (0.5 * dtj * dtj) * aj + shift;
+        const Vec3 vj = p.velocity[j] + dtj * aj + shift_velocity;
+        const double floor = kVelocityResolution * (norm(vi) + norm(vj));
+        Vec3 dr = xi - xj;
+        const double width = s_.box.length(0);
+        if (x_images) dr.x -= width * std::nearbyint(dr.x / width);
+        for (int image = x_images ? -1 : 0; image <= (x_images ? 1 : 0); ++image) {
+          const Vec3 d{dr.x + image * width, dr.y, dr.z};
+          const double t = (rolling_[i] < 0 && rolling_[j] < 0)
+                               ? contact_time(d, vi - vj, ri + p.radius[j], floor)
+                               : contact_time_accelerated(d, vi - vj, ai - aj, ri + p.radius[j], best, floor);
+          if (t < best) {
+            best = t;
+            e = Event{Kind::pair, 0, static_cast<std::uint32_t>(j), count_[j]};
+          }
+        }
+      }
+    };
     const int span_z = Dim == 3 ? 1 : 0;
     for (int dz = -span_z; dz <= span_z; ++dz) {
       int cz = ci[2] + dz, sz = 0;
@@ -237,26 +264,20 @@ class EdmdEngine {
       for (int dy = -1; dy <= 1; ++dy) {
         int cy = ci[1] + dy, sy = 0;
         if (!wrap_cell(1, cy, sy)) continue;
+        if (sy != 0 && shear_velocity_ != 0.0) {
+          // Across a Lees–Edwards boundary the image row slides: its x offset is sy * delta(t) and
+          // it moves at sy * U. Every cell of that row is searched, so no partner is missed.
+          const Vec3 shift{sy * shear_offset(now), sy * s_.box.length(1), sz * s_.box.length(2)};
+          const Vec3 shift_velocity{sy * shear_velocity_, 0.0, 0.0};
+          for (int cx = 0; cx < cells_[0]; ++cx) consider(cx + cells_[0] * (cy + cells_[1] * cz), shift, shift_velocity, true);
+          continue;
+        }
         for (int dx = -1; dx <= 1; ++dx) {
           int cx = ci[0] + dx, sx = 0;
           if (!wrap_cell(0, cx, sx)) continue;
           const Vec3 shift{sx * s_.box.length(0), sy * s_.box.length(1), sz * s_.box.length(2)};
           const Vec3 shift_velocity{sx * width_rate_, 0.0, 0.0};  // images move with the width rate
-          for (int j = head_[cx + cells_[0] * (cy + cells_[1] * cz)]; j >= 0; j = next_[j]) {
-            if (static_cast<std::uint32_t>(j) == i) continue;
-            const double dtj = now - s_.clock[j];
-            const Vec3 aj = acceleration(static_cast<std::uint32_t>(j));
-            const Vec3 xj = p.position[j] + dtj * p.velocity[j] + (0.5 * dtj * dtj) * aj + shift;
-            const Vec3 vj = p.velocity[j] + dtj * aj + shift_velocity;
-            const double floor = kVelocityResolution * (norm(vi) + norm(vj));
-            const double t = (rolling_[i] < 0 && rolling_[j] < 0)
-                                 ? contact_time(xi - xj, vi - vj, ri + p.radius[j], floor)
-                                 : contact_time_accelerated(xi - xj, vi - vj, ai - aj, ri + p.radius[j], best, floor);
-            if (t < best) {
-              best = t;
-              e = Event{Kind::pair, 0, static_cast<std::uint32_t>(j), count_[j]};
-            }
-          }
+          consider(cx + cells_[0] * (cy + cells_[1] * cz), shift, shift_velocity, false);
         }
       }
     }
@@ -321,8 +342,8 @@ class EdmdEngine {
         advance(j, s_.time);
         // A collision needs approach. Round-off in a root taken at a touching, grazing pair can
         // schedule one for a pair already separating: then there is nothing to resolve.
-        const Vec3 dr = s_.box.minimum_image(s_.particles.position[i], s_.particles.position[j]);
-        const Vec3 vi = s_.particles.velocity[i], vj = s_.particles.velocity[j];
+        const Vec3 dr = displacement(i, j);
+        const Vec3 vi = s_.particles.velocity[i], vj = s_.particles.velocity[j] + image_velocity(i, j);
         if (!approaching(dr, vi - vj, kVelocityResolution * (norm(vi) + norm(vj)))) {
           ++counters_.stale;
           predict(j);
@@ -352,6 +373,32 @@ class EdmdEngine {
     }
     predict(i);
     queue_.update(i);
+  }
+
+  // Nearest-image separation x_i - x_j at the current time (Lees–Edwards rows shifted by delta(t)).
+  Vec3 displacement(std::uint32_t i, std::uint32_t j) const {
+    if (shear_velocity_ == 0.0) return s_.box.minimum_image(s_.particles.position[i], s_.particles.position[j]);
+    Vec3 d = s_.particles.position[i] - s_.particles.position[j];
+    const double k = std::nearbyint(d.y / s_.box.length(1));
+    d.y -= k * s_.box.length(1);
+    d.x -= k * shear_offset(s_.time);
+    d.x -= s_.box.length(0) * std::nearbyint(d.x / s_.box.length(0));
+    if (Dim == 3 && s_.box.periodic[2]) d.z -= s_.box.length(2) * std::nearbyint(d.z / s_.box.length(2));
+    return d;
+  }
+
+  // Velocity of the image of j that i meets (non-zero only across a Lees–Edwards boundary).
+  Vec3 image_velocity(std::uint32_t i, std::uint32_t j) const {
+    if (shear_velocity_ == 0.0) return Vec3{};
+    const double dy = s_.particles.position[i].y - s_.particles.position[j].y;
+    return Vec3{std::nearbyint(dy / s_.box.length(1)) * shear_velocity_, 0.0, 0.0};
+  }
+
+  // Lees–Edwards offset of the image row above: U t modulo the width (U = shear rate x height).
+  double shear_offset(double t) const {
+    const double width = s_.box.length(0);
+    const double offset = std::fmod(shear_velocity_ * t, width);
+    return offset < 0.0 ? offset + width : offset;
   }
 
   double gap_at(double t) const {
@@ -424,13 +471,17 @@ class EdmdEngine {
 
   void collide(std::uint32_t i, std::uint32_t j) {
     ParticleStore& p = s_.particles;
-    const Vec3 dr = s_.box.minimum_image(p.position[i], p.position[j]);
+    const Vec3 dr = displacement(i, j);
     const Vec3 normal = dr * (1.0 / norm(dr));
     const double before = kinetic_energy(i) + kinetic_energy(j);
     const bool recent = s_.time - last_collision_[i] < s_.contact_duration || s_.time - last_collision_[j] < s_.contact_duration;
+    // Across a Lees–Edwards boundary i meets j's sliding image: resolve in that frame.
+    const Vec3 frame = image_velocity(i, j);
+    p.velocity[j] += frame;
     const Vec3 impulse = collide_pair({p.velocity[i], p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
                                       {p.velocity[j], p.angular_velocity[j], p.radius[j], p.inv_mass[j], p.inv_inertia[j]},
                                       normal, recent ? elastic_ : s_.restitution, recent ? -1.0 : s_.tangential_restitution);
+    p.velocity[j] -= frame;
     last_collision_[i] = last_collision_[j] = s_.time;
     counters_.virial += dot(dr, impulse);
     counters_.dissipated += before - kinetic_energy(i) - kinetic_energy(j);
@@ -482,6 +533,20 @@ class EdmdEngine {
       p.position[i][axis] -= k * s_.box.length(axis);
       p.image[i][axis] += k;
       c[axis] -= k * cells_[axis];
+      if (axis == 1 && shear_velocity_ != 0.0) {
+        // Lees–Edwards: the particle becomes its image in the sliding row, shifted and moving with it.
+        p.position[i].x -= k * shear_offset(s_.time);
+        p.velocity[i].x -= k * shear_velocity_;
+        const double width = s_.box.length(0);  // back into [lo, hi) along x only: y sits on its face
+        const double turns = std::floor((p.position[i].x - s_.box.lo.x) / width);
+        p.position[i].x -= turns * width;
+        p.image[i][0] += static_cast<std::int32_t>(turns);
+        ++count_[i];
+        unlink(static_cast<int>(i));
+        cell_[i] = cell_of(p.position[i]);
+        link(static_cast<int>(i));
+        return;
+      }
       if (axis == 0 && width_rate_ != 0.0) {
         p.velocity[i].x -= k * width_rate_;  // it becomes its image, which moves with the width rate
         ++count_[i];
@@ -505,6 +570,7 @@ class EdmdEngine {
   std::vector<double> last_collision_;  // s, for the TC model
   double max_diameter_ = 0.0;
   double width_ref_ = 0.0, width_rate_ = 0.0, width_since_ = 0.0;  // periodic width L(t), Couette servo
+  double shear_velocity_ = 0.0;  // m/s, Lees–Edwards: velocity of the image row above (shear rate x height)
   std::vector<double> wall_normal_impulse_;  // kg m/s into each wall since the last servo update
   int bottom_wall_ = -1, top_wall_ = -1;
   double aspect_ = 0.0, shear_rate_ = 0.0;

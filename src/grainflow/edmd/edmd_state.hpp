@@ -39,6 +39,7 @@ struct EdmdState {
   double contact_duration = 0.0;  // s, TC model (Luding & McNamara): elastic within this time of a particle's last collision
   std::vector<SpeciesConfig> species;
   ServoConfig servo;              // pressure-controlled Couette walls, when enabled
+  double lees_edwards_rate = 0.0; // 1/s, shear rate of Lees–Edwards boundaries (flow x, gradient y)
   double stress_unit = 1.0;       // m U_T^2 / R^2 (2D) or / R^3 (3D): Campbell's stress scale for the servo
   double speed_unit = 1.0;        // m/s, U_T at the start
 };

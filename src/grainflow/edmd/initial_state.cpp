@@ -158,6 +158,8 @@ void set_velocities(const CaseConfig& c, EdmdState& s, std::mt19937_64& rng) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (c.particles.initial_temperature > 0.0) p.velocity[i] -= momentum * (1.0 / mass);  // fluctuations only
     p.velocity[i] += c.particles.initial_velocity;
+    if (c.lees_edwards_rate != 0.0)  // the homogeneous shear profile, zero at mid-height
+      p.velocity[i].x += c.lees_edwards_rate * (p.position[i].y - 0.5 * (c.domain.lo.y + c.domain.hi.y));
     if (c.particles.initial_profile == "couette") {
       const double fraction = (p.position[i].y - c.domain.lo.y) / c.domain.length(1);
       p.velocity[i] += fraction * c.walls[3].velocity + (1.0 - fraction) * c.walls[2].velocity;
@@ -204,6 +206,7 @@ EdmdState build_edmd_state(const CaseConfig& c) {
     s.walls.push_back(wall);
   }
   s.servo = c.servo;
+  s.lees_edwards_rate = c.lees_edwards_rate;
   if (s.servo.enabled) {
     const double radius = 0.5 * c.species.front().diameter;
     const double mass = particle_mass(c.species.front(), c.species.front().diameter, s.dimension);
