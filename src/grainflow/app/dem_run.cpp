@@ -201,12 +201,9 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
         summary.integer("profile_samples", profile.samples());
         summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
-        summary.strings("errors", errors);
-        summary.strings("warnings", warnings);
-        io::write_atomically(dir + "/summary.json", [&](std::ostream& out) { summary.write(out); });
+        exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
       },
       engine);
-  for (const auto& e : errors) std::cerr << "grainflow: run failed: " << e << "\n";
   return exit_status;
 }
 

@@ -199,12 +199,9 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
           summary.number("wall_gap", e.servo().gap);
           summary.number("cell_width", e.servo().width);
         }
-        summary.strings("errors", errors);
-        summary.strings("warnings", warnings);
-        io::write_atomically(dir + "/summary.json", [&](std::ostream& out) { summary.write(out); });
+        exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
       },
       engine);
-  for (const auto& e : errors) std::cerr << "grainflow: run failed: " << e << "\n";
   return exit_status;
 }
 

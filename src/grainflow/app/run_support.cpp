@@ -1,6 +1,7 @@
 #include "grainflow/app/run_support.hpp"
 
 #include <cstdio>
+#include <iostream>
 
 #include "grainflow/io/atomic_file.hpp"
 
@@ -15,6 +16,15 @@ void Progress::update(double time) {
   const double rate = time / elapsed;
   const double eta = rate > 0.0 ? (duration_ - time) / rate : 0.0;
   std::fprintf(stderr, "\r  t = %.4g / %.4g s   %.3g s/s   ETA %.0f s   ", time, duration_, rate, eta);
+}
+
+int finish_summary(io::JsonObject& summary, const std::string& dir, const std::vector<std::string>& errors,
+                   const std::vector<std::string>& warnings, int exit_status) {
+  summary.strings("errors", errors);
+  summary.strings("warnings", warnings);
+  io::write_atomically(dir + "/summary.json", [&](std::ostream& out) { summary.write(out); });
+  for (const auto& e : errors) std::cerr << "grainflow: run failed: " << e << "\n";
+  return exit_status;
 }
 
 void Progress::finish() {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "grainflow/core/case_config.hpp"
+#include "grainflow/io/json_writer.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::app {
@@ -49,6 +50,11 @@ class Progress {
   double duration_;
   clock::time_point start_, last_;
 };
+
+// Adds errors and warnings to summary.json, writes it atomically into `dir`, and repeats the
+// errors on stderr; returns `exit_status`.
+int finish_summary(io::JsonObject& summary, const std::string& dir, const std::vector<std::string>& errors,
+                   const std::vector<std::string>& warnings, int exit_status);
 
 // final_state.csv: every particle by id, with exact doubles so the state can start another run.
 void write_final_state(const std::string& path, const ParticleStore& p, const std::vector<SpeciesConfig>& species);

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "grainflow/core/error.hpp"
+#include "grainflow/particles/species_sequence.hpp"
 #include "grainflow/dem/bump_lattice.hpp"
 #include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
@@ -89,15 +90,6 @@ double bump_clearance(const CaseConfig& c, int face) {
 
 Vec3 region_lo(const CaseConfig& c) { return c.particles.region_lo.value_or(c.domain.lo); }
 Vec3 region_hi(const CaseConfig& c) { return c.particles.region_hi.value_or(c.domain.hi); }
-
-// Species of each placed particle, in a shuffled order so mixtures start mixed.
-std::vector<int> species_sequence(const CaseConfig& c, std::mt19937_64& rng) {
-  std::vector<int> sequence;
-  for (std::size_t s = 0; s < c.species.size(); ++s)
-    sequence.insert(sequence.end(), static_cast<std::size_t>(c.species[s].count), static_cast<int>(s));
-  if (c.species.size() > 1) std::shuffle(sequence.begin(), sequence.end(), rng);
-  return sequence;
-}
 
 void place_lattice(const CaseConfig& c, DemState& s, std::mt19937_64& rng, double max_diameter) {
   const Vec3 lo = region_lo(c), hi = region_hi(c);

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "grainflow/core/error.hpp"
+#include "grainflow/particles/species_sequence.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 
 namespace grainflow::edmd {
@@ -30,14 +31,6 @@ void add_particle(EdmdState& s, const CaseConfig& c, int species, double diamete
   p.inv_inertia[i] = 1.0 / (c.collision.inertia_factor * m * r * r);
   p.species[i] = species;
   p.id[i] = static_cast<std::uint32_t>(i);
-}
-
-std::vector<int> species_sequence(const CaseConfig& c, std::mt19937_64& rng) {
-  std::vector<int> sequence;
-  for (std::size_t k = 0; k < c.species.size(); ++k)
-    sequence.insert(sequence.end(), static_cast<std::size_t>(c.species[k].count), static_cast<int>(k));
-  if (c.species.size() > 1) std::shuffle(sequence.begin(), sequence.end(), rng);
-  return sequence;
 }
 
 // Square (2D) or simple cubic (3D) lattice filled from the gravity side, each site displaced at
