@@ -54,6 +54,7 @@ struct ParticlesConfig {
   double lattice_jitter = 0.0;   // edmd lattice: random displacement, as a fraction of the gap
   Vec3 initial_velocity;         // m/s, added to every moving particle
   std::string initial_profile = "uniform";  // uniform | couette (linear from the lo wall to the hi wall's speed)
+                                            // | campbell_chute (listing COL007's profile, max = initial_velocity)
 };
 
 struct ContactConfig {

@@ -134,8 +134,8 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (!(p.lattice_jitter >= 0.0 && p.lattice_jitter < 1.0)) r.fail("lattice_jitter", "must lie in [0, 1)");
     p.initial_velocity = r.vec3("initial_velocity", {});
     p.initial_profile = r.string("initial_profile", p.initial_profile);
-    if (p.initial_profile != "uniform" && p.initial_profile != "couette")
-      r.fail("initial_profile", "must be \"uniform\" or \"couette\"");
+    if (p.initial_profile != "uniform" && p.initial_profile != "couette" && p.initial_profile != "campbell_chute")
+      r.fail("initial_profile", "must be \"uniform\", \"couette\" or \"campbell_chute\"");
     p.lattice_spacing = r.number("lattice_spacing", p.lattice_spacing);
     if (!(p.lattice_spacing >= 1.0)) r.fail("lattice_spacing", "must be at least 1 (in diameters)");
     r.reject_unknown_keys();
