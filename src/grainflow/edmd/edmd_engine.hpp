@@ -387,11 +387,22 @@ class EdmdEngine {
     return d;
   }
 
-  // Velocity of the image of j that i meets (non-zero only across a Lees–Edwards boundary).
+  // Velocity of the image of j that i meets: images across a Lees–Edwards boundary slide at U, and
+  // images across x move at the width rate of a Couette cell whose width follows its gap. Prediction
+  // and resolution must agree on it, or a touching pair is scheduled and skipped for ever.
   Vec3 image_velocity(std::uint32_t i, std::uint32_t j) const {
-    if (shear_velocity_ == 0.0) return Vec3{};
-    const double dy = s_.particles.position[i].y - s_.particles.position[j].y;
-    return Vec3{std::nearbyint(dy / s_.box.length(1)) * shear_velocity_, 0.0, 0.0};
+    Vec3 v;
+    const Vec3 d = s_.particles.position[i] - s_.particles.position[j];
+    double rows = 0.0;
+    if (shear_velocity_ != 0.0) {
+      rows = std::nearbyint(d.y / s_.box.length(1));
+      v.x += rows * shear_velocity_;
+    }
+    if (width_rate_ != 0.0) {
+      const double dx = d.x - rows * shear_offset(s_.time);
+      v.x += std::nearbyint(dx / s_.box.length(0)) * width_rate_;
+    }
+    return v;
   }
 
   // Lees–Edwards offset of the image row above: U t modulo the width (U = shear rate x height).
