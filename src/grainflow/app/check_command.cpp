@@ -27,9 +27,23 @@ void print_edmd_check(const CaseConfig& c, std::ostream& out) {
   const auto& k = c.collision;
   out << fmt::format("  particles                   {}\n", total);
   out << fmt::format("  packing fraction (box)      {:.6g}\n", solids / measure);
-  out << fmt::format("  restitution                 {} ({}), walls {:.6g}\n",
+  out << fmt::format("  restitution                 {} ({})\n",
                      k.restitution_law == "campbell" ? "campbell law" : fmt::format("{:.6g}", k.restitution),
-                     k.restitution_law, k.wall_restitution);
+                     k.restitution_law);
+  for (int f = 0; f < 6; ++f) {
+    if (c.domain.faces[f] != FaceKind::wall || face_axis(f) >= dim) continue;
+    const WallConfig& w = c.walls[f];
+    out << fmt::format("  wall {}                    e = {:.6g}, {}, velocity [{:.6g}, {:.6g}, {:.6g}] m/s\n", kFaceNames[f],
+                       w.restitution >= 0.0 ? w.restitution : k.wall_restitution, w.condition, w.velocity.x,
+                       w.velocity.y, w.velocity.z);
+  }
+  if (c.servo.enabled)
+    out << fmt::format("  Couette servo               target normal stress {:.6g} {}, width {}, shear rate {}\n",
+                       c.servo.normal_stress, dim == 2 ? "N/m" : "Pa", c.servo.scale_width ? "follows the gap" : "fixed",
+                       c.servo.keep_shear_rate ? "kept" : "not kept");
+  if (c.lees_edwards_rate != 0.0)
+    out << fmt::format("  Lees-Edwards shear rate     {:.6g} 1/s (image rows slide at {:.6g} m/s)\n", c.lees_edwards_rate,
+                       c.lees_edwards_rate * c.domain.length(1));
   out << fmt::format("  tangential restitution      {:.6g}  (-1 smooth, 0 Campbell's rough rule)\n", k.tangential_restitution);
   out << fmt::format("  inertia factor (k/R)^2      {:.6g}\n", k.inertia_factor);
   if (k.elastic_speed > 0.0) out << fmt::format("  elastic below impact speed  {:.6g} m/s\n", k.elastic_speed);
