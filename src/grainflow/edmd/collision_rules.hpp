@@ -14,7 +14,7 @@ namespace grainflow::edmd {
 
 // Normal restitution as a function of the normal impact speed.
 struct RestitutionLaw {
-  enum class Kind { constant, campbell, elastic_below };
+  enum class Kind { constant, campbell };
   Kind kind = Kind::constant;
   double value = 1.0;           // e (constant), or e far above elastic_speed
   double velocity_scale = 1.0;  // m/s, campbell: e = (1 + exp(-3 dv / velocity_scale)) / 2

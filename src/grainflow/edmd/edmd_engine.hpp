@@ -72,8 +72,6 @@ class EdmdEngine {
   EdmdState& state() { return s_; }
   const EdmdState& state() const { return s_; }
   EventCounters& counters() { return counters_; }
-  // Time of the event scheduled for particle i (infinite when none).
-  double scheduled_time(std::size_t i) const { return event_time_[i]; }
   const ServoState& servo() const { return servo_state_; }
 
   // Processes every event up to time `t_end`, then brings all particles to `t_end`.
@@ -93,8 +91,8 @@ class EdmdEngine {
       } else if (++without_progress > 100 * static_cast<long long>(n) + 1000) {
         throw RunError("simulated time stopped advancing at t = " + std::to_string(s_.time) + " s (particle " +
                        std::to_string(s_.particles.id[i]) +
-                       " keeps colliding at the same instant: inelastic collapse; set collision.elastic_speed "
-                       "so that very slow impacts are elastic)");
+                       " keeps colliding at the same instant: inelastic collapse or a resting contact; set "
+                       "collision.contact_duration (TC model) and, under gravity, collision.rolling_speed)");
       }
       s_.time = t;
       update_width();
@@ -487,10 +485,7 @@ class EdmdEngine {
     servo_gap_ = gap;
     servo_collisions_ = counters_.collisions;
     ++counters_.servo_updates;
-    for (std::size_t i = 0; i < s_.particles.size(); ++i) {
-      predict(static_cast<std::uint32_t>(i));
-      queue_.update(static_cast<std::uint32_t>(i));
-    }
+    repredict_all();
   }
 
   void collide(std::uint32_t i, std::uint32_t j) {
