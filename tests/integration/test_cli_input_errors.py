@@ -54,6 +54,8 @@ BAD_CASES = [
      "steps"),
     ("drive_on_periodic_face", VALID + '\n[drive]\nface = "xlo"\namplitude = [0.001, 0.0, 0.0]\n'
      'frequency = [20.0, 0.0, 0.0]\n', "drive.face", "periodic"),
+    ("averaging_window_in_collisions_with_dem", VALID + "average_start_collisions = 1000\n",
+     "output.average_start_collisions", "event-driven"),
 ]
 
 

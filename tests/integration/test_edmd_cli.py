@@ -134,6 +134,32 @@ def check_run_in_collisions(exe, tmp):
           f"({[r['collisions'] for r in rows[-2:]]})")
 
 
+def check_average_window_in_collisions(exe, tmp):
+    # output.average_start_collisions = N: the summary's long-term pressure averages only the rows
+    # reached after N particle collisions. With rows of equal length the long-term pressure is the
+    # mean of the rows' interval pressures, so it must equal the mean over exactly those rows (to the
+    # 6 significant digits timeseries.csv prints), and differ from the mean over all rows (the chute
+    # accelerates, so its pressure drifts).
+    target = 20000
+    out = os.path.join(tmp, "chute_average_collisions")
+    status, _, err = run(exe, "run", CHUTE, "-o", out, "--quiet", "--set", "run.duration=60", "--set", "output.average_start=0",
+                         "--set", f"output.average_start_collisions={target}")
+    if not check(status == 0, f"average_start_collisions: exited {status}: {err.strip()}"):
+        return
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    rows = read_csv(os.path.join(out, "timeseries.csv"))[1:]  # the t = 0 row has no interval
+    late = [float(r["pressure"]) for r in rows if int(r["collisions"]) >= target]
+    every = [float(r["pressure"]) for r in rows]
+    if not check(0 < len(late) < len(every), f"average_start_collisions: {len(late)} of {len(every)} rows averaged"):
+        return
+    expected = sum(late) / len(late)
+    check(abs(summary["pressure"] / expected - 1) < 1e-5,
+          f"average_start_collisions: summary pressure {summary['pressure']} != mean of late rows {expected}")
+    check(abs(sum(every) / len(every) / expected - 1) > 1e-3,
+          "average_start_collisions: the window made no difference (test cannot tell)")
+
+
 HARD_DISCS = """[engine]
 kind = "edmd"
 dimension = 2
@@ -313,6 +339,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="grainflow_edmd_") as tmp:
         check_chute(exe, tmp)
         check_run_in_collisions(exe, tmp)
+        check_average_window_in_collisions(exe, tmp)
         check_hard_disc_pressure(exe, tmp)
         check_bad_inputs(exe, tmp)
     return finish("test_edmd_cli")

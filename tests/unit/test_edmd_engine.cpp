@@ -607,3 +607,51 @@ TEST(EdmdChute, TwentyDegreesRuns1e7EventsWithoutStalling) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// A run that cannot advance simulated time must stop with a message, not hang. A ball bouncing on
+// a floor with e = 0.8 and nothing to stop it (no rolling state, no TC model) bounces ever faster:
+// dropped through a gap h = 2 it lands at t0 = sqrt(2h/g), bounce k lasts 2 t0 e^k, so the bounces
+// pile up at t = t0 (1 + 2e / (1 - e)) = 9 t0 = 5.747 s (Zeno), and after ~160 bounces the
+// intervals are below the resolution of t. The engine must say so at the accumulation point (its
+// progress check needs time to move by 1e-9 of itself per ~1000 events, i.e. it stops within
+// ~1e-8 s of it; 1e-6 allows for that) instead of crawling for ever.
+TEST(EdmdStall, ZenoBouncesStopTheRunWithAMessage) {
+  test::ParticleFile file("zeno.csv", "ball,1.5,2.5,1.5,0.0,0.0,0.0\n");
+  char text[2048];
+  std::snprintf(text, sizeof text, R"([engine]
+kind = "edmd"
+dimension = 3
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [3.0, 10.0, 3.0]
+boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
+[gravity]
+vector = [0.0, -9.81, 0.0]
+[[species]]
+name = "ball"
+diameter = 1.0
+density = 1.0
+count = 0
+[particles]
+init = "file"
+file = "%s"
+[collision]
+rolling_speed = 0.0
+contact_duration = 0.0
+[walls.ylo]
+restitution = 0.8
+[run]
+duration = 10.0
+)",
+                file.path().c_str());
+  EdmdEngine<3> engine = engine_from<3>(text);
+  try {
+    engine.advance_to(10.0);
+    FAIL() << "the run reached t = 10 s through a Zeno point at 5.747 s";
+  } catch (const RunError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("simulated time"), std::string::npos) << message;
+    EXPECT_NEAR(engine.state().time, 9.0 * std::sqrt(2.0 * 2.0 / 9.81), 1e-6);
+  }
+}

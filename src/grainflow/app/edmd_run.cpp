@@ -83,7 +83,8 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
     // not counted as pressure: sum m v'^2 = d M T.
     const double kinetic = dim * row.global.mass * row.global.granular_temperature;
     row.pressure = (kinetic + (span > 0.0 ? (k.virial - last_virial) / span : 0.0)) / (dim * current_measure(e));
-    if (st.time > c.output.average_start && span > 0.0) {
+    const bool averaging = st.time > c.output.average_start && k.collisions >= c.output.average_start_collisions;
+    if (averaging && span > 0.0) {
       average_kinetic += kinetic;
       average_temperature += row.global.granular_temperature;
       ++average_rows;

@@ -135,6 +135,7 @@ struct OutputConfig {
   double snapshot_interval = 0.0; // s between VTU snapshots (0 = none)
   double profile_interval = 0.0;  // s between profile samples (0 = interval / 10)
   double average_start = 0.0;     // s, long-term averages start here
+  long long average_start_collisions = 0;  // edmd: ... and not before this many particle collisions
   double zone_thickness = 0.0;    // m, profile zones along gravity (0 = reference species diameter)
 };
 

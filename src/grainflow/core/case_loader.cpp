@@ -344,6 +344,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (o.profile_interval < 0.0) r.fail("profile_interval", "must not be negative");
     o.average_start = r.number("average_start", 0.0);
     if (o.average_start < 0.0) r.fail("average_start", "must not be negative");
+    o.average_start_collisions = r.integer("average_start_collisions", 0);
+    if (o.average_start_collisions < 0) r.fail("average_start_collisions", "must not be negative");
+    if (o.average_start_collisions > 0 && c.engine.kind != "edmd")
+      r.fail("average_start_collisions", "only the event-driven engine counts collisions (use average_start)");
     o.zone_thickness = r.number("zone_thickness", 0.0);
     if (o.zone_thickness < 0.0) r.fail("zone_thickness", "must not be negative");
     r.reject_unknown_keys();

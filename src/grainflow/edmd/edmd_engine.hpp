@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -51,14 +52,15 @@ class EdmdEngine {
   explicit EdmdEngine(EdmdState state) : s_(std::move(state)) {
     const ParticleStore& p = s_.particles;
     const std::size_t n = p.size();
-    s_.clock.assign(n, s_.time);
-    count_.assign(n, 0);
     last_collision_.assign(n, -kNever);
-    rolling_.assign(n, -1);
     event_.assign(n, Event{});
     event_time_.assign(n, kNever);
     for (double r : p.radius) max_diameter_ = std::max(max_diameter_, 2.0 * r);
+    const bool one_size = std::all_of(p.radius.begin(), p.radius.end(), [&](double r) { return r == p.radius.front(); });
+    uniform_radius_ = one_size && n > 0 ? p.radius.front() : 0.0;
+    load_flights();
     width_ref_ = s_.box.length(0);
+    window_start_ = s_.time;
     width_since_ = s_.time;
     wall_normal_impulse_.assign(s_.walls.size(), 0.0);
     if (s_.servo.enabled) start_servo();
@@ -81,20 +83,12 @@ class EdmdEngine {
       s_.time = t_end;
       return;
     }
-    long long without_progress = 0;
     while (true) {
       const std::uint32_t i = queue_.top();
       const double t = event_time_[i];
       if (!(t <= t_end)) break;
-      if (t > s_.time) {
-        without_progress = 0;
-      } else if (++without_progress > 100 * static_cast<long long>(n) + 1000) {
-        throw RunError("simulated time stopped advancing at t = " + std::to_string(s_.time) + " s (particle " +
-                       std::to_string(s_.particles.id[i]) +
-                       " keeps colliding at the same instant: inelastic collapse or a resting contact; set "
-                       "collision.contact_duration (TC model) and, under gravity, collision.rolling_speed)");
-      }
       s_.time = t;
+      check_progress(i);
       update_width();
       process(i);
       if (s_.servo.enabled && servo_due()) servo_update();
@@ -102,11 +96,37 @@ class EdmdEngine {
     synchronize(t_end);
   }
 
-  // Brings every particle to time t (no event may lie before t).
+  // A run stalls when events keep coming at one instant, or crawls when time moves by round-off
+  // only (Zeno bounces, inelastic collapse). Each window of 100 N + 1000 events (some 50 collisions
+  // per particle) must move time forward by more than 1e-9 of its value; a healthy run would need
+  // ~10^10 collisions per particle before that bound could bite.
+  void check_progress(std::uint32_t i) {
+    const long long window = 100 * static_cast<long long>(s_.particles.size()) + 1000;
+    if (++window_events_ < window) return;
+    const double moved = s_.time - window_start_;
+    if (!(moved > 1e-9 * std::fabs(s_.time))) {
+      char text[160];
+      std::snprintf(text, sizeof text, "simulated time stopped advancing at t = %.17g s: the last %lld events moved it by %.3g s",
+                    s_.time, window, moved);
+      throw RunError(std::string(text) + " (particle " + std::to_string(s_.particles.id[i]) +
+                     " among them: inelastic collapse, a resting contact or ever faster bounces on a wall; set "
+                     "collision.contact_duration (TC model) and, under gravity, collision.rolling_speed)");
+    }
+    window_events_ = 0;
+    window_start_ = s_.time;
+  }
+
+  // Brings every particle to time t (no event may lie before t) and copies positions and velocities
+  // back into the particle store, where outputs read them.
   void synchronize(double t) {
     s_.time = t;
     update_width();
-    for (std::size_t i = 0; i < s_.particles.size(); ++i) advance(static_cast<std::uint32_t>(i), t);
+    ParticleStore& p = s_.particles;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      advance(static_cast<std::uint32_t>(i), t);
+      p.position[i] = flight_[i].x;
+      p.velocity[i] = flight_[i].v;
+    }
     if (s_.servo.enabled) {
       servo_state_.gap = gap_at(t);
       servo_state_.width = s_.box.length(0);
@@ -131,6 +151,30 @@ class EdmdEngine {
     std::uint32_t partner_count = 0; // partner's trajectory counter when predicted
   };
 
+  // What predicting and advancing a particle reads, in one cache line: an event at 10^6 particles
+  // looks at a few dozen partners at random places in memory, one line each instead of one per array.
+  struct alignas(64) Flight {
+    Vec3 x;                   // m, position at `clock`
+    double clock = 0.0;       // s, the particle's own time (lazy advance)
+    Vec3 v;                   // m/s, velocity at `clock`
+    std::uint32_t count = 0;  // trajectory counter: changes whenever the velocity jumps
+    std::int32_t next = -1;   // next particle in the same cell, -1 at the end
+  };
+  static_assert(sizeof(Flight) == 64);
+
+  void load_flights() {
+    ParticleStore& p = s_.particles;
+    flight_.assign(p.size(), Flight{});
+    rolling_.assign(p.size(), -1);
+    rolling_count_ = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      s_.box.wrap(p.position[i], p.image[i]);
+      flight_[i].x = p.position[i];
+      flight_[i].v = p.velocity[i];
+      flight_[i].clock = s_.time;
+    }
+  }
+
   // Cells at least a diameter wide; with a shrinking periodic width, 10% spare so the grid lasts.
   void build_grid() {
     const std::size_t n = s_.particles.size();
@@ -141,12 +185,11 @@ class EdmdEngine {
       cell_size_[a] = s_.box.length(a) / cells_[a];
     }
     head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2], -1);
-    next_.assign(n, -1);
     prev_.assign(n, -1);
     cell_.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i) {
-      s_.box.wrap(s_.particles.position[i], s_.particles.image[i]);
-      cell_[i] = cell_of(s_.particles.position[i]);
+      s_.box.wrap(flight_[i].x, s_.particles.image[i]);
+      cell_[i] = cell_of(flight_[i].x);
       link(static_cast<int>(i));
     }
   }
@@ -158,8 +201,9 @@ class EdmdEngine {
     std::vector<std::uint32_t> order;
     order.reserve(n);
     for (int c = 0; c < static_cast<int>(head_.size()); ++c)
-      for (int j = head_[c]; j >= 0; j = next_[j]) order.push_back(static_cast<std::uint32_t>(j));
+      for (int j = head_[c]; j >= 0; j = flight_[j].next) order.push_back(static_cast<std::uint32_t>(j));
     s_.particles.permute(order);
+    load_flights();
     build_grid();
   }
 
@@ -183,32 +227,40 @@ class EdmdEngine {
   void link(int i) {
     const int c = cell_[i];
     prev_[i] = -1;
-    next_[i] = head_[c];
+    flight_[i].next = head_[c];
     if (head_[c] >= 0) prev_[head_[c]] = i;
     head_[c] = i;
   }
   void unlink(int i) {
-    if (prev_[i] >= 0) next_[prev_[i]] = next_[i];
-    else head_[cell_[i]] = next_[i];
-    if (next_[i] >= 0) prev_[next_[i]] = prev_[i];
+    if (prev_[i] >= 0) flight_[prev_[i]].next = flight_[i].next;
+    else head_[cell_[i]] = flight_[i].next;
+    if (flight_[i].next >= 0) prev_[flight_[i].next] = prev_[i];
   }
 
   // Moves particle i along its parabola to time t.
   void advance(std::uint32_t i, double t) {
-    const double dt = t - s_.clock[i];
+    const double dt = t - flight_[i].clock;
     if (dt == 0.0) return;
-    ParticleStore& p = s_.particles;
     const Vec3 a = acceleration(i);
-    p.position[i] += dt * p.velocity[i] + (0.5 * dt * dt) * a;
-    p.velocity[i] += dt * a;
-    s_.clock[i] = t;
-    if (rolling_[i] >= 0) roll_without_slip(i);
+    flight_[i].x += dt * flight_[i].v + (0.5 * dt * dt) * a;
+    flight_[i].v += dt * a;
+    flight_[i].clock = t;
+    if (rolls(i)) roll_without_slip(i);
+  }
+
+  // One particle size needs no look-up in the radius array (a cache miss per partner at 10^6).
+  double radius(int j) const { return uniform_radius_ > 0.0 ? uniform_radius_ : s_.particles.radius[j]; }
+
+  bool rolls(std::uint32_t i) const { return rolling_count_ != 0 && rolling_[i] >= 0; }
+  void set_rolling(std::uint32_t i, int wall) {
+    rolling_count_ += (wall >= 0) - (rolling_[i] >= 0);
+    rolling_[i] = wall;
   }
 
   // Free flight accelerates with gravity; a rolling particle with the tangential part of gravity,
   // reduced by 1/(1 + q) when it rolls without slipping (rough and no-slip walls).
   Vec3 acceleration(std::uint32_t i) const {
-    if (rolling_[i] < 0) return s_.gravity;
+    if (!rolls(i)) return s_.gravity;
     const EdmdWall& wall = s_.walls[rolling_[i]];
     Vec3 a = s_.gravity;
     a[wall.axis] = 0.0;
@@ -225,7 +277,7 @@ class EdmdEngine {
     ParticleStore& p = s_.particles;
     Vec3 n;
     n[wall.axis] = wall.inward;
-    const Vec3 slide = p.velocity[i] - wall.velocity;
+    const Vec3 slide = flight_[i].v - wall.velocity;
     const Vec3 spin_about_normal = dot(p.angular_velocity[i], n) * n;
     p.angular_velocity[i] = spin_about_normal + cross(n, slide) * (1.0 / p.radius[i]);
   }
@@ -236,38 +288,46 @@ class EdmdEngine {
     const double now = s_.time;
     double best = kNever;
     Event e;
-    const Vec3 xi = p.position[i];
-    const Vec3 vi = p.velocity[i];
+    const Vec3 xi = flight_[i].x;
+    const Vec3 vi = flight_[i].v;
     const Vec3 ai = acceleration(i);
     const double ri = p.radius[i];
+    const double speed_i = norm(vi);
     // Partners in the neighboring cells (periodic images through shifted cells).
     const auto ci = cell_coordinates(cell_[i]);
     // Partners in one cell seen through an image shift; `x_images` also tries the neighboring
     // images along x (a Lees–Edwards row slides by an arbitrary offset, so the nearest image now
     // need not be the one met first).
     auto consider = [&](int cell, const Vec3& shift, const Vec3& shift_velocity, bool x_images) {
-      for (int j = head_[cell]; j >= 0; j = next_[j]) {
+      for (int j = head_[cell]; j >= 0; j = flight_[j].next) {
         if (static_cast<std::uint32_t>(j) == i) continue;
-        const double dtj = now - s_.clock[j];
+        const double dtj = now - flight_[j].clock;
         const Vec3 aj = acceleration(static_cast<std::uint32_t>(j));
-        const Vec3 xj = p.position[j] + dtj * p.velocity[j] + (0.5 * dtj * dtj) * aj + shift;
-        const Vec3 vj = p.velocity[j] + dtj * aj + shift_velocity;
-        const double floor = kVelocityResolution * (norm(vi) + norm(vj));
+        const Vec3 xj = flight_[j].x + dtj * flight_[j].v + (0.5 * dtj * dtj) * aj + shift;
+        const Vec3 vj = flight_[j].v + dtj * aj + shift_velocity;
+        const double floor = kVelocityResolution * (speed_i + norm(vj));
         Vec3 dr = xi - xj;
         const double width = s_.box.length(0);
         if (x_images) dr.x -= width * std::nearbyint(dr.x / width);
         for (int image = x_images ? -1 : 0; image <= (x_images ? 1 : 0); ++image) {
           const Vec3 d{dr.x + image * width, dr.y, dr.z};
-          const double t = (rolling_[i] < 0 && rolling_[j] < 0)
-                               ? contact_time(d, vi - vj, ri + p.radius[j], floor)
-                               : contact_time_accelerated(d, vi - vj, ai - aj, ri + p.radius[j], best, floor);
+          const double t = (!rolls(i) && !rolls(static_cast<std::uint32_t>(j)))
+                               ? contact_time(d, vi - vj, ri + radius(j), floor)
+                               : contact_time_accelerated(d, vi - vj, ai - aj, ri + radius(j), best, floor);
           if (t < best) {
             best = t;
-            e = Event{Kind::pair, 0, static_cast<std::uint32_t>(j), count_[j]};
+            e = Event{Kind::pair, 0, static_cast<std::uint32_t>(j), flight_[j].count};
           }
         }
       }
     };
+    // The neighboring cells are listed first and the first particle of each fetched ahead, so the
+    // memory reads for all of them overlap instead of following one another.
+    struct Visit {
+      int cell, sx, sy, sz;
+    };
+    std::array<Visit, 27> visits;
+    int visit_count = 0;
     const int span_z = Dim == 3 ? 1 : 0;
     for (int dz = -span_z; dz <= span_z; ++dz) {
       int cz = ci[2] + dz, sz = 0;
@@ -286,14 +346,20 @@ class EdmdEngine {
         for (int dx = -1; dx <= 1; ++dx) {
           int cx = ci[0] + dx, sx = 0;
           if (!wrap_cell(0, cx, sx)) continue;
-          const Vec3 shift{sx * s_.box.length(0), sy * s_.box.length(1), sz * s_.box.length(2)};
-          const Vec3 shift_velocity{sx * width_rate_, 0.0, 0.0};  // images move with the width rate
-          consider(cx + cells_[0] * (cy + cells_[1] * cz), shift, shift_velocity, false);
+          visits[visit_count++] = {cx + cells_[0] * (cy + cells_[1] * cz), sx, sy, sz};
         }
       }
     }
+    for (int k = 0; k < visit_count; ++k)
+      if (const int first = head_[visits[k].cell]; first >= 0) __builtin_prefetch(&flight_[first]);
+    for (int k = 0; k < visit_count; ++k) {
+      const Visit& v = visits[k];
+      const Vec3 shift{v.sx * s_.box.length(0), v.sy * s_.box.length(1), v.sz * s_.box.length(2)};
+      const Vec3 shift_velocity{v.sx * width_rate_, 0.0, 0.0};  // images move with the width rate
+      consider(v.cell, shift, shift_velocity, false);
+    }
     for (std::size_t w = 0; w < s_.walls.size(); ++w) {
-      if (rolling_[i] == static_cast<int>(w)) continue;  // rolling on it: no bounces
+      if (rolls(i) && rolling_[i] == static_cast<int>(w)) continue;  // rolling on it: no bounces
       const EdmdWall& wall = s_.walls[w];
       const int a = wall.axis;
       const double gap = wall.inward * (xi[a] - wall.at(now)) - ri;
@@ -344,7 +410,7 @@ class EdmdEngine {
     switch (e.kind) {
       case Kind::pair: {
         const std::uint32_t j = e.partner;
-        if (count_[j] != e.partner_count) {  // the partner changed course: re-predict i
+        if (flight_[j].count != e.partner_count) {  // the partner changed course: re-predict i
           ++counters_.stale;
           advance(i, s_.time);
           break;
@@ -354,14 +420,15 @@ class EdmdEngine {
         // A collision needs approach. Round-off in a root taken at a touching, grazing pair can
         // schedule one for a pair already separating: then there is nothing to resolve.
         const Vec3 dr = displacement(i, j);
-        const Vec3 vi = s_.particles.velocity[i], vj = s_.particles.velocity[j] + image_velocity(i, j);
+        const Vec3 vi = flight_[i].v, vj = flight_[j].v + image_velocity(i, j);
         if (!approaching(dr, vi - vj, kVelocityResolution * (norm(vi) + norm(vj)))) {
           ++counters_.stale;
           predict(j);
           queue_.update(j);
           break;
         }
-        rolling_[i] = rolling_[j] = -1;  // a particle collision ends rolling
+        set_rolling(i, -1);  // a particle collision ends rolling
+        set_rolling(j, -1);
         collide(i, j);
         predict(j);
         queue_.update(j);
@@ -370,7 +437,7 @@ class EdmdEngine {
       case Kind::wall: {
         advance(i, s_.time);
         const EdmdWall& wall = s_.walls[e.detail];
-        const double approach = wall.inward * (s_.particles.velocity[i][wall.axis] - wall.velocity[wall.axis]);
+        const double approach = wall.inward * (flight_[i].v[wall.axis] - wall.velocity[wall.axis]);
         if (approach < 0.0) collide_with_wall(i, e.detail);
         else start_rolling_if_slow(i, e.detail);  // touching and receding too slowly to leave it
         break;
@@ -388,8 +455,8 @@ class EdmdEngine {
 
   // Nearest-image separation x_i - x_j at the current time (Lees–Edwards rows shifted by delta(t)).
   Vec3 displacement(std::uint32_t i, std::uint32_t j) const {
-    if (shear_velocity_ == 0.0) return s_.box.minimum_image(s_.particles.position[i], s_.particles.position[j]);
-    Vec3 d = s_.particles.position[i] - s_.particles.position[j];
+    if (shear_velocity_ == 0.0) return s_.box.minimum_image(flight_[i].x, flight_[j].x);
+    Vec3 d = flight_[i].x - flight_[j].x;
     const double k = std::nearbyint(d.y / s_.box.length(1));
     d.y -= k * s_.box.length(1);
     d.x -= k * shear_offset(s_.time);
@@ -403,7 +470,7 @@ class EdmdEngine {
   // and resolution must agree on it, or a touching pair is scheduled and skipped for ever.
   Vec3 image_velocity(std::uint32_t i, std::uint32_t j) const {
     Vec3 v;
-    const Vec3 d = s_.particles.position[i] - s_.particles.position[j];
+    const Vec3 d = flight_[i].x - flight_[j].x;
     double rows = 0.0;
     if (shear_velocity_ != 0.0) {
       rows = std::nearbyint(d.y / s_.box.length(1));
@@ -496,16 +563,16 @@ class EdmdEngine {
     const bool recent = s_.time - last_collision_[i] < s_.contact_duration || s_.time - last_collision_[j] < s_.contact_duration;
     // Across a Lees–Edwards boundary i meets j's sliding image: resolve in that frame.
     const Vec3 frame = image_velocity(i, j);
-    p.velocity[j] += frame;
-    const Vec3 impulse = collide_pair({p.velocity[i], p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
-                                      {p.velocity[j], p.angular_velocity[j], p.radius[j], p.inv_mass[j], p.inv_inertia[j]},
+    flight_[j].v += frame;
+    const Vec3 impulse = collide_pair({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
+                                      {flight_[j].v, p.angular_velocity[j], p.radius[j], p.inv_mass[j], p.inv_inertia[j]},
                                       normal, recent ? elastic_ : s_.restitution, recent ? -1.0 : s_.tangential_restitution);
-    p.velocity[j] -= frame;
+    flight_[j].v -= frame;
     last_collision_[i] = last_collision_[j] = s_.time;
     counters_.virial += dot(dr, impulse);
     counters_.dissipated += before - kinetic_energy(i) - kinetic_energy(j);
-    ++count_[i];
-    ++count_[j];
+    ++flight_[i].count;
+    ++flight_[j].count;
     ++counters_.collisions;
   }
 
@@ -516,13 +583,13 @@ class EdmdEngine {
     normal[wall.axis] = wall.inward;
     const double before = kinetic_energy(i);
     const bool recent = s_.time - last_collision_[i] < s_.contact_duration;
-    const Vec3 impulse = collide_wall({p.velocity[i], p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
+    const Vec3 impulse = collide_wall({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
                                       normal, wall.velocity, recent ? elastic_ : wall.restitution,
                                       recent ? WallCondition::smooth : wall.condition);
     wall_normal_impulse_[w] += dot(impulse, normal);
     last_collision_[i] = s_.time;
     counters_.dissipated += before - kinetic_energy(i);
-    ++count_[i];
+    ++flight_[i].count;
     ++counters_.wall_collisions;
     start_rolling_if_slow(i, w);
   }
@@ -532,13 +599,13 @@ class EdmdEngine {
   void start_rolling_if_slow(std::uint32_t i, int w) {
     const EdmdWall& wall = s_.walls[w];
     ParticleStore& p = s_.particles;
-    const double rebound = wall.inward * (p.velocity[i][wall.axis] - wall.velocity[wall.axis]);
+    const double rebound = wall.inward * (flight_[i].v[wall.axis] - wall.velocity[wall.axis]);
     if (rebound >= s_.rolling_speed || wall.velocity[wall.axis] != 0.0) return;
-    p.velocity[i][wall.axis] = wall.velocity[wall.axis];
-    p.position[i][wall.axis] = wall.at(s_.time) + wall.inward * p.radius[i];
-    rolling_[i] = w;
+    flight_[i].v[wall.axis] = wall.velocity[wall.axis];
+    flight_[i].x[wall.axis] = wall.at(s_.time) + wall.inward * p.radius[i];
+    set_rolling(i, w);
     roll_without_slip(i);
-    ++count_[i];
+    ++flight_[i].count;
     ++counters_.rolling_starts;
   }
 
@@ -549,26 +616,26 @@ class EdmdEngine {
     ParticleStore& p = s_.particles;
     if (c[axis] < 0 || c[axis] >= cells_[axis]) {  // through a periodic face
       const int k = c[axis] < 0 ? -1 : 1;
-      p.position[i][axis] -= k * s_.box.length(axis);
+      flight_[i].x[axis] -= k * s_.box.length(axis);
       p.image[i][axis] += k;
       c[axis] -= k * cells_[axis];
       if (axis == 1 && shear_velocity_ != 0.0) {
         // Lees–Edwards: the particle becomes its image in the sliding row, shifted and moving with it.
-        p.position[i].x -= k * shear_offset(s_.time);
-        p.velocity[i].x -= k * shear_velocity_;
+        flight_[i].x.x -= k * shear_offset(s_.time);
+        flight_[i].v.x -= k * shear_velocity_;
         const double width = s_.box.length(0);  // back into [lo, hi) along x only: y sits on its face
-        const double turns = std::floor((p.position[i].x - s_.box.lo.x) / width);
-        p.position[i].x -= turns * width;
+        const double turns = std::floor((flight_[i].x.x - s_.box.lo.x) / width);
+        flight_[i].x.x -= turns * width;
         p.image[i][0] += static_cast<std::int32_t>(turns);
-        ++count_[i];
+        ++flight_[i].count;
         unlink(static_cast<int>(i));
-        cell_[i] = cell_of(p.position[i]);
+        cell_[i] = cell_of(flight_[i].x);
         link(static_cast<int>(i));
         return;
       }
       if (axis == 0 && width_rate_ != 0.0) {
-        p.velocity[i].x -= k * width_rate_;  // it becomes its image, which moves with the width rate
-        ++count_[i];
+        flight_[i].v.x -= k * width_rate_;  // it becomes its image, which moves with the width rate
+        ++flight_[i].count;
       }
     }
     unlink(static_cast<int>(i));
@@ -578,16 +645,18 @@ class EdmdEngine {
 
   double kinetic_energy(std::uint32_t i) const {
     const ParticleStore& p = s_.particles;
-    return 0.5 * p.mass[i] * norm2(p.velocity[i]) + 0.5 * norm2(p.angular_velocity[i]) / p.inv_inertia[i];
+    return 0.5 * p.mass[i] * norm2(flight_[i].v) + 0.5 * norm2(p.angular_velocity[i]) / p.inv_inertia[i];
   }
 
   EdmdState s_;
   std::array<int, 3> cells_{1, 1, 1};
   Vec3 cell_size_;
-  std::vector<int> head_, next_, prev_, cell_;
-  std::vector<std::uint32_t> count_;
+  std::vector<int> head_, prev_, cell_;
   std::vector<double> last_collision_;  // s, for the TC model
   double max_diameter_ = 0.0;
+  double uniform_radius_ = 0.0;
+  long long window_events_ = 0;  // events since the last progress check
+  double window_start_ = 0.0;    // s, time at the last progress check  // m, the radius of every particle, or 0 when sizes differ
   double width_ref_ = 0.0, width_rate_ = 0.0, width_since_ = 0.0;  // periodic width L(t), Couette servo
   double shear_velocity_ = 0.0;  // m/s, Lees–Edwards: velocity of the image row above (shear rate x height)
   std::vector<double> wall_normal_impulse_;  // kg m/s into each wall since the last servo update
@@ -596,7 +665,9 @@ class EdmdEngine {
   double servo_since_ = 0.0, servo_gap_ = 0.0;
   long long servo_collisions_ = 0;
   ServoState servo_state_;
-  std::vector<int> rolling_;            // wall a particle rolls on, -1 when free
+  std::vector<Flight> flight_;
+  std::vector<int> rolling_;  // wall a particle rolls on, -1 when free
+  long long rolling_count_ = 0;  // particles rolling now: while 0, nobody reads rolling_
   RestitutionLaw elastic_;              // e = 1: TC collisions are elastic and smooth (no dissipation at all)
   std::vector<Event> event_;
   std::vector<double> event_time_;

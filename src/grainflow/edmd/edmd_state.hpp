@@ -1,5 +1,7 @@
-// Everything an event-driven run holds apart from its scheduling structures: particles (with
-// positions valid at each particle's own clock), box, gravity, walls and collision rules.
+// Everything an event-driven run holds apart from its scheduling structures: particles, box,
+// gravity, walls and collision rules. While events run the engine keeps positions and velocities
+// in its own per-particle records (each on its own clock); the particle store is brought up to
+// date whenever the engine synchronizes (at the end of every advance_to).
 #pragma once
 
 #include <vector>
@@ -27,8 +29,7 @@ struct EdmdWall {
 
 struct EdmdState {
   int dimension = 3;
-  ParticleStore particles;      // positions and velocities at `clock` of each particle
-  std::vector<double> clock;    // s, each particle's own time (lazy advance)
+  ParticleStore particles;      // positions and velocities valid at `time` after a synchronize
   PeriodicBox box;
   Vec3 gravity;                 // m/s^2
   double time = 0.0;            // s

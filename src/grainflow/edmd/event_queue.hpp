@@ -1,7 +1,8 @@
-// One scheduled event per particle, kept in an indexed binary min-heap on the event time:
-// the next event is found in O(1), and re-scheduling a particle costs O(log N). Each heap node
-// carries its own key (time), so sifting walks contiguous heap memory instead of looking up the
-// times of scattered particles: at 10^6 particles that saves a cache miss per level.
+// One scheduled event per particle, kept in an indexed 4-ary min-heap on the event time: the next
+// event is found in O(1), and re-scheduling a particle costs O(log N). Each heap node carries its
+// own key (time), so sifting walks heap memory instead of looking up the times of scattered
+// particles, and the four children of a node share one 64-byte cache line: at 10^6 particles a
+// sift through the cold lower levels costs half the cache misses of a binary heap.
 #pragma once
 
 #include <cstdint>
@@ -13,29 +14,39 @@ class EventQueue {
  public:
   void reset(std::size_t particles, const std::vector<double>* times) {
     times_ = times;
-    heap_.resize(particles);
+    size_ = particles;
+    // Node k lives at slot k + 3, so children 4k+1 .. 4k+4 fill slots 4k+4 .. 4k+7: one line.
+    lines_.assign((particles + kOffset + kArity - 1) / kArity + 1, Line{});
+    heap_ = lines_.data()->node + kOffset;
     position_.resize(particles);
     for (std::size_t i = 0; i < particles; ++i) {
       heap_[i] = {(*times_)[i], static_cast<std::uint32_t>(i)};
       position_[i] = static_cast<std::uint32_t>(i);
     }
-    for (std::size_t k = particles / 2; k-- > 0;) sift_down(k);
+    for (std::size_t k = particles / kArity + 1; k-- > 0;) sift_down(k);
   }
-  std::uint32_t top() const { return heap_.front().particle; }
-  bool empty() const { return heap_.empty(); }
+  std::uint32_t top() const { return heap_[0].particle; }
+  bool empty() const { return size_ == 0; }
   // Call after the event time of particle `i` changed.
   void update(std::uint32_t i) {
     const std::size_t k = position_[i];
     heap_[k].time = (*times_)[i];
-    if (k > 0 && heap_[(k - 1) / 2].time > heap_[k].time) sift_up(k);
+    if (k > 0 && heap_[(k - 1) / kArity].time > heap_[k].time) sift_up(k);
     else sift_down(k);
   }
 
  private:
+  static constexpr std::size_t kArity = 4;
+  static constexpr std::size_t kOffset = kArity - 1;
   struct Node {
     double time;
     std::uint32_t particle;
   };
+  struct alignas(64) Line {
+    Node node[kArity];
+  };
+  static_assert(sizeof(Line) == 64);
+
   void place(std::size_t k, const Node& node) {
     heap_[k] = node;
     position_[node.particle] = static_cast<std::uint32_t>(k);
@@ -43,7 +54,7 @@ class EventQueue {
   void sift_up(std::size_t k) {
     const Node item = heap_[k];
     while (k > 0) {
-      const std::size_t parent = (k - 1) / 2;
+      const std::size_t parent = (k - 1) / kArity;
       if (heap_[parent].time <= item.time) break;
       place(k, heap_[parent]);
       k = parent;
@@ -51,12 +62,15 @@ class EventQueue {
     place(k, item);
   }
   void sift_down(std::size_t k) {
-    const std::size_t n = heap_.size();
+    if (k >= size_) return;
     const Node item = heap_[k];
     while (true) {
-      std::size_t child = 2 * k + 1;
-      if (child >= n) break;
-      if (child + 1 < n && heap_[child + 1].time < heap_[child].time) ++child;
+      const std::size_t first = kArity * k + 1;
+      if (first >= size_) break;
+      const std::size_t last = first + kArity < size_ ? first + kArity : size_;
+      std::size_t child = first;
+      for (std::size_t c = first + 1; c < last; ++c)
+        if (heap_[c].time < heap_[child].time) child = c;
       if (heap_[child].time >= item.time) break;
       place(k, heap_[child]);
       k = child;
@@ -65,7 +79,9 @@ class EventQueue {
   }
 
   const std::vector<double>* times_ = nullptr;
-  std::vector<Node> heap_;
+  std::vector<Line> lines_;
+  Node* heap_ = nullptr;
+  std::size_t size_ = 0;
   std::vector<std::uint32_t> position_;
 };
 
