@@ -2,10 +2,10 @@
 # Event-driven cost per event against N: elastic hard spheres (3D, packing fraction 0.45) and hard
 # discs (2D, area fraction 0.45), N = 10^3 .. 10^6, about 8 collisions per particle each run.
 # Prints N, events/s, collisions/s and nanoseconds per event (from summary.json).
-# Usage: bench/edmd_sweep.sh [MAX_EXPONENT]   (default 6)
+# Usage: [GRAINFLOW=BINARY] bench/edmd_sweep.sh [MAX_EXPONENT]   (default 6)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-BIN=build/release/grainflow
+BIN=${GRAINFLOW:-build/release/grainflow}  # GRAINFLOW=path/to/another/build compares builds
 MAX=${1:-6}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT

@@ -7,7 +7,8 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libtomlplusplus-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3-matplotlib python3-numpy
+  libfftw3-dev libhdf5-dev hdf5-tools
+  python3-matplotlib python3-numpy python3-h5py
 )
 
 missing=()

@@ -14,9 +14,11 @@
 #include "grainflow/core/version.hpp"
 #include "grainflow/dem/contact_laws.hpp"
 #include "grainflow/io/atomic_file.hpp"
+#include "grainflow/io/hdf5_file.hpp"
 #include "grainflow/io/json_writer.hpp"
 #include "grainflow/io/vtu_writer.hpp"
 #include "grainflow/observe/global_sample.hpp"
+#include "grainflow/observe/trajectory_sampler.hpp"
 #include "grainflow/observe/zone_profile.hpp"
 
 namespace grainflow::app {
@@ -66,6 +68,58 @@ void write_profiles(const std::string& path, const observe::ZoneProfile& profile
   });
 }
 
+// trajectory.h5 and the sampler that fills it ([trajectory], Lan 1994 sections 3.2-3.3).
+struct TrajectoryOutput {
+  io::H5Writer file;
+  io::GrowingDataset time, velocity, position;
+  std::optional<observe::TrajectorySampler> sampler;
+  long requested = 0;
+
+  TrajectoryOutput(const CaseConfig& c, const dem::DerivedQuantities& d, const ParticleStore& p, const std::string& dir)
+      : file(dir + "/trajectory.h5"), requested(c.trajectory.samples) {
+    const auto& t = c.trajectory;
+    std::vector<std::uint32_t> ids = t.particles;
+    if (ids.empty())
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (p.motion[i] == Motion::free) ids.push_back(p.id[i]);
+    std::sort(ids.begin(), ids.end());
+    const double window = t.window > 0.0 ? t.window : 0.5 * c.run.collision_steps * d.time_step;
+    const double start = t.start >= 0.0 ? t.start : c.output.average_start;
+    std::vector<std::int64_t> id_column(ids.begin(), ids.end());
+    file.write("/id", id_column);
+    file.attribute("/", "window", window);
+    file.attribute("/", "start", start);
+    file.attribute("/", "time_step", d.time_step);
+    file.attribute("/", "samples_requested", static_cast<std::int64_t>(t.samples));
+    file.attribute("/", "max_lag", static_cast<std::int64_t>(t.max_lag > 0 ? t.max_lag : t.samples / 2));
+    file.attribute("/", "diameter", d.reference_diameter);
+    file.attribute("/", "restitution", c.contact.restitution);
+    file.attribute("/", "gravity_axis", static_cast<std::int64_t>(d.gravity_axis));
+    file.attribute("/", "case", c.path);
+    file.attribute("/", "version", std::string(kVersion));
+    file.attribute("/", "units", std::string("time s, velocity m/s, position m (unwrapped), window and time_step s"));
+    const auto n = static_cast<unsigned long long>(ids.size());
+    time = file.growing("/time", {}, 1024);
+    velocity = file.growing("/velocity", {n, 3}, 16);
+    position = file.growing("/position", {n, 3}, 16);
+    sampler.emplace(std::move(ids), start, window, t.samples,
+                    [this](double when, const std::vector<double>& v, const std::vector<double>& x) {
+                      time.append(&when);
+                      velocity.append(v.data());
+                      position.append(x.data());
+                    });
+  }
+  // Commits what was taken (a shortened trajectory is still valid data) and says if it is short.
+  void finish(std::vector<std::string>& warnings) {
+    file.attribute("/", "samples", static_cast<std::int64_t>(sampler->taken()));
+    if (sampler->taken() < requested)
+      warnings.push_back("trajectory: the run ended after " + std::to_string(sampler->taken()) + " of the " +
+                         std::to_string(requested) + " requested samples (trajectory.start, window and samples " +
+                         "need a longer run.duration)");
+    file.commit();
+  }
+};
+
 }  // namespace
 
 int run_dem(const CaseConfig& c, const RunOptions& options) {
@@ -97,6 +151,10 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   Schedule profile_schedule(profile_interval, dt);
   Schedule snapshot_schedule(c.output.snapshot_interval, dt);
   const long average_from = static_cast<long>(std::ceil(c.output.average_start / dt - 1e-9));
+
+  std::optional<TrajectoryOutput> trajectory;
+  if (c.trajectory.enabled)
+    std::visit([&](auto& e) { trajectory.emplace(c, derived, e.state().particles, dir); }, engine);
 
   std::vector<TimeseriesRow> rows;
   std::vector<std::string> errors, warnings;
@@ -143,6 +201,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
           if (snapshots) snapshots->add(e.state().particles, e.state().time);
           for (long step = 1; step <= total_steps; ++step) {
             e.step();
+            if (trajectory) trajectory->sampler->observe(e.state().particles, e.state().box, e.state().time - dt, e.state().time);
             if (profile_schedule.due(step) && step >= average_from) profile.sample(e.state().particles);
             if (output_schedule.due(step)) {
               record(e);
@@ -162,6 +221,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     exit_status = 1;
   }
   progress.finish();
+  if (trajectory) trajectory->finish(warnings);
   const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
   std::visit(

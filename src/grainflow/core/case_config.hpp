@@ -139,6 +139,17 @@ struct OutputConfig {
   double zone_thickness = 0.0;    // m, profile zones along gravity (0 = reference species diameter)
 };
 
+// [trajectory]: windowed samples of chosen particles' velocities and unwrapped positions for
+// correlation functions and diffusion (Lan 1994 sections 3.2-3.3), written to trajectory.h5.
+struct TrajectoryConfig {
+  bool enabled = false;
+  double start = -1.0;           // s; < 0: output.average_start
+  double window = 0.0;           // s, t_s; 0: (collision_steps / 2) time steps, Lan's half collision time
+  long long samples = 2000;      // windows to record
+  long long max_lag = 0;         // samples, the longest lag `grainflow analyze` uses; 0: samples / 2
+  std::vector<std::uint32_t> particles;  // ids to follow; empty: every free particle
+};
+
 // One explicitly given particle (init = "file").
 struct InitialParticle {
   std::string species;
@@ -161,6 +172,7 @@ struct CaseConfig {
   DriveConfig drive;
   RunConfig run;
   OutputConfig output;
+  TrajectoryConfig trajectory;
   std::vector<InitialParticle> initial_particles;  // read from particles.file
 };
 

@@ -352,6 +352,36 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (o.zone_thickness < 0.0) r.fail("zone_thickness", "must not be negative");
     r.reject_unknown_keys();
   }
+  if (top.has("trajectory")) {
+    TomlReader r = top.table("trajectory");
+    auto& t = c.trajectory;
+    if (c.engine.kind != "dem") top.fail("trajectory", "trajectory sampling is implemented for the DEM engine only");
+    t.enabled = true;
+    t.start = r.number("start", -1.0);
+    if (r.has("start") && t.start < 0.0) r.fail("start", "must not be negative");
+    t.window = r.number("window", 0.0);
+    if (t.window < 0.0) r.fail("window", "must not be negative (0 = half a collision time, Lan's t_s)");
+    t.samples = r.integer("samples", t.samples);
+    if (t.samples < 2) r.fail("samples", "needs at least 2 samples");
+    if (t.samples > 100000000) r.fail("samples", "more than 10^8 samples per particle is surely a mistake");
+    t.max_lag = r.integer("max_lag", 0);
+    if (t.max_lag < 0 || t.max_lag >= t.samples) r.fail("max_lag", "must lie in [0, samples) (0 = samples / 2)");
+    if (const toml::node* ids = r.raw("particles")) {
+      if (const auto* word = ids->as_string()) {
+        if (word->get() != "all") r.fail("particles", "must be \"all\" or an array of particle ids");
+      } else if (const auto* list = ids->as_array()) {
+        for (const auto& item : *list) {
+          const auto value = item.value<std::int64_t>();
+          if (!value || *value < 0 || *value > 0xFFFFFFFFll) r.fail("particles", "ids must be non-negative integers");
+          t.particles.push_back(static_cast<std::uint32_t>(*value));
+        }
+        if (t.particles.empty()) r.fail("particles", "an empty list follows nobody (use \"all\")");
+      } else {
+        r.fail("particles", "must be \"all\" or an array of particle ids");
+      }
+    }
+    r.reject_unknown_keys();
+  }
   top.reject_unknown_keys();
   return c;
 }

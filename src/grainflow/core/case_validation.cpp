@@ -118,6 +118,20 @@ void validate_dem(const CaseConfig& c) {
     fail(c, "species.count", "more than 2e8 particles cannot run on one machine");
   const double steps = c.run.duration / d.time_step;
   if (steps > 1e13) fail(c, "run.duration", "needs more than 1e13 time steps");
+  if (c.trajectory.enabled) {
+    const auto& t = c.trajectory;
+    if (t.window > 0.0 && t.window < d.time_step) fail(c, "trajectory.window", "is shorter than one time step");
+    const long total = d.moving_particles + d.frozen_particles;
+    for (auto id : t.particles)
+      if (id >= static_cast<std::uint64_t>(total))
+        fail(c, "trajectory.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
+                                            std::to_string(total - 1) + ")");
+    const double followed = t.particles.empty() ? static_cast<double>(d.moving_particles) : t.particles.size();
+    const double bytes = 48.0 * followed * static_cast<double>(t.samples);  // velocity + position, 6 doubles
+    if (bytes > 64e9)
+      fail(c, "trajectory.samples", "trajectory.h5 would hold " + std::to_string(bytes / 1e9) +
+                                        " GB; follow fewer particles or take fewer samples");
+  }
 }
 
 // Densest packings the event-driven placements reach: random sequential addition jams near 0.547
