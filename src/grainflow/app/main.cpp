@@ -1,4 +1,4 @@
-// The `grainflow` command line (INTERFACE.md): run, check, plot, cases, --version.
+// The `grainflow` command line (INTERFACE.md): run, check, plot, analyze, sweep, cases, --version.
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -6,9 +6,11 @@
 #include <iostream>
 #include <unistd.h>
 
+#include "grainflow/app/analyze_command.hpp"
 #include "grainflow/app/check_command.hpp"
 #include "grainflow/app/dem_run.hpp"
 #include "grainflow/app/edmd_run.hpp"
+#include "grainflow/app/sweep_command.hpp"
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
@@ -80,6 +82,31 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("cases", "list the bundled cases");
 
+  // grainflow analyze: correlations and diffusion from a run's trajectory.h5 (app/analyze_command.hpp).
+  std::string analyze_dir;
+  app::AnalyzeOptions analyze_options;
+  auto* analyze = app.add_subcommand("analyze", "correlation functions and diffusion coefficients of a finished run");
+  analyze->add_option("outdir", analyze_dir, "output folder of a run with trajectory.h5")->required();
+  analyze->add_option("--max-lag", analyze_options.max_lag, "longest lag in samples (default: the case's trajectory.max_lag)")
+      ->check(CLI::Range(2LL, 1000000000LL));
+  analyze->add_option("--groups", analyze_options.groups, "independent particle groups for the error bars (default 8)")
+      ->check(CLI::Range(1, 1000000));
+
+  // grainflow sweep: the case at many values of some keys, runs in parallel (app/sweep_command.hpp).
+  app::SweepOptions sweep_options;
+  auto* sweep = app.add_subcommand("sweep", "run a case at many values of some keys, as parallel processes");
+  sweep->add_option("case", sweep_options.case_path, "case file (TOML)")->required();
+  sweep->add_option("--vary", sweep_options.vary, "a key and its values: --vary collision.restitution=0.5,0.7")
+      ->type_name("KEY=V1,V2,...")->required()->allow_extra_args(false);
+  sweep->add_flag("--zip", sweep_options.zip, "take the --vary lists element by element, not every combination");
+  sweep->add_option("-o,--output", sweep_options.output_directory, "output folder (default: runs/<case name>_sweep)");
+  sweep->add_option("--jobs", sweep_options.jobs, "runs at a time (default: $GRAINFLOW_JOBS, else cores / threads)")
+      ->check(CLI::Range(1, 4096));
+  sweep->add_option("--set", sweep_options.overrides, "override a case key in every run")
+      ->type_name("KEY=VALUE")->allow_extra_args(false);
+  sweep->add_option("--threads", sweep_options.threads, "OpenMP threads of each run (default 1)")->check(CLI::Range(1, 1024));
+  sweep->add_flag("--quiet", sweep_options.quiet, "no progress lines");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -90,6 +117,8 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("cases")) return list_cases();
     if (app.got_subcommand("plot")) return plot(plot_dir);
+    if (app.got_subcommand("analyze")) return app::analyze_run(analyze_dir, analyze_options);
+    if (app.got_subcommand("sweep")) return app::run_sweep(sweep_options, std::vector<std::string>(argv, argv + argc));
     const CaseConfig c = load_case(case_path, overrides);
     if (app.got_subcommand("check")) {
       app::print_check(c, std::cout);
