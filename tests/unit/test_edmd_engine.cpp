@@ -178,15 +178,11 @@ TEST(EdmdElasticGas, RoughDiscs2DConserveEnergyAndMomentumOver1e6Collisions) {
 // ---------------------------------------------------------------------------------------------
 // A ball bouncing on a floor under gravity: apex heights in the ratio e^2.
 
-template <int Dim>
-void check_bouncing_ball(const std::string& condition) {
-  // One particle (R = 0.5) dropped from 2 (gap below it) with a horizontal velocity, g = 9.81,
-  // wall restitution e = 0.8; rolling_speed and elastic_speed 0 (set explicitly: under gravity
-  // rolling_speed defaults to 1e-4 sqrt(g R), harmless here but not the point), so every bounce is a
-  // plain restitution: after bounce k the flight energy (gap + vy^2 / 2g) is e^(2k) h0. Between
-  // bounces free flight is an exact parabola and each bounce a few operations: 1e-12 relative.
-  const double e = 0.8, g = 9.81, h0 = 2.0, R = 0.5;
-  test::ParticleFile file("ball.csv", "ball,1.5,2.5,1.5,0.3,0.0,0.0\n");
+// One ball (d = 1, density 1) from `file` above a floor (wall at y = 0, restitution e_wall, the
+// given condition) under g = 9.81 in a 3 x 10 (x 3) box, periodic sideways; `collision` holds
+// extra [collision] keys.
+std::string ball_on_floor_case(int dim, const std::string& file, double e_wall, const std::string& condition,
+                               const std::string& collision) {
   char text[2048];
   std::snprintf(text, sizeof text, R"([engine]
 kind = "edmd"
@@ -196,7 +192,7 @@ lo = [0.0, 0.0, 0.0]
 hi = [3.0, 10.0, 3.0]
 boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
 [gravity]
-vector = [0.0, %.17g, 0.0]
+vector = [0.0, -9.81, 0.0]
 [[species]]
 name = "ball"
 diameter = 1.0
@@ -207,15 +203,27 @@ init = "file"
 file = "%s"
 [collision]
 restitution = 0.5
-rolling_speed = 0.0
-elastic_speed = 0.0
+%s
 [walls.ylo]
-restitution = %g
+restitution = %.17g
 condition = "%s"
 [run]
 duration = 10.0
 )",
-                Dim, -g, file.path().c_str(), e, condition.c_str());
+                dim, file.c_str(), collision.c_str(), e_wall, condition.c_str());
+  return text;
+}
+
+template <int Dim>
+void check_bouncing_ball(const std::string& condition) {
+  // One particle (R = 0.5) dropped from 2 (gap below it) with a horizontal velocity, g = 9.81,
+  // wall restitution e = 0.8; rolling_speed and elastic_speed 0 (set explicitly: under gravity
+  // rolling_speed defaults to 1e-4 sqrt(g R), harmless here but not the point), so every bounce is a
+  // plain restitution: after bounce k the flight energy (gap + vy^2 / 2g) is e^(2k) h0. Between
+  // bounces free flight is an exact parabola and each bounce a few operations: 1e-12 relative.
+  const double e = 0.8, g = 9.81, h0 = 2.0, R = 0.5;
+  test::ParticleFile file("ball.csv", "ball,1.5,2.5,1.5,0.3,0.0,0.0\n");
+  const std::string text = ball_on_floor_case(Dim, file.path(), e, condition, "rolling_speed = 0.0\nelastic_speed = 0.0");
   EdmdEngine<Dim> engine = engine_from<Dim>(text);
   const auto& p = engine.state().particles;
   ASSERT_EQ(p.size(), 1u);
@@ -618,33 +626,7 @@ TEST(EdmdChute, TwentyDegreesRuns1e7EventsWithoutStalling) {
 // ~1e-8 s of it; 1e-6 allows for that) instead of crawling for ever.
 TEST(EdmdStall, ZenoBouncesStopTheRunWithAMessage) {
   test::ParticleFile file("zeno.csv", "ball,1.5,2.5,1.5,0.0,0.0,0.0\n");
-  char text[2048];
-  std::snprintf(text, sizeof text, R"([engine]
-kind = "edmd"
-dimension = 3
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [3.0, 10.0, 3.0]
-boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
-[gravity]
-vector = [0.0, -9.81, 0.0]
-[[species]]
-name = "ball"
-diameter = 1.0
-density = 1.0
-count = 0
-[particles]
-init = "file"
-file = "%s"
-[collision]
-rolling_speed = 0.0
-contact_duration = 0.0
-[walls.ylo]
-restitution = 0.8
-[run]
-duration = 10.0
-)",
-                file.path().c_str());
+  const std::string text = ball_on_floor_case(3, file.path(), 0.8, "smooth", "rolling_speed = 0.0\ncontact_duration = 0.0");
   EdmdEngine<3> engine = engine_from<3>(text);
   try {
     engine.advance_to(10.0);
