@@ -213,3 +213,27 @@ TEST(ZoneProfile, WorksAlongAnyAxis) {
   EXPECT_NEAR(zones[0].solids_fraction, sphere_volume(0.001) / 0.005, 1e-15);
   EXPECT_NEAR(zones[0].mean_velocity.z, 2.0, 1e-12);
 }
+
+// The instantaneous zone mean velocity (the histories behind Lan's spectra, section 4.3): mass
+// weighted with partial volumes, not accumulated. A sphere centred on the boundary between zones 0
+// and 1 gives half its mass to each; with a second, heavier sphere wholly in zone 0 the zone-0 mean
+// is (m1 v1 / 2 + m2 v2) / (m1 / 2 + m2) exactly, zone 1 has the first sphere's velocity alone,
+// and an empty zone reads zero. Calling it does not add a sample to the long-term averages.
+TEST(ZoneProfile, InstantaneousMeanVelocityIsPartialVolumeWeighted) {
+  ParticleStore p;
+  const double r = 0.001, density = 2500.0;
+  add(p, {0.005, 0.004, 0.005}, r, density, {0.0, 1.0, 0.0});         // centred on y = 0.004
+  add(p, {0.005, 0.0015, 0.005}, r, 3.0 * density, {0.0, -2.0, 0.5});  // wholly in zone 0
+  ZoneProfile profile(1, 0.0, 0.012, 0.004, 0.01 * 0.01);
+  const auto u = profile.instantaneous_mean_velocity(p);
+  ASSERT_EQ(u.size(), 3u);
+  const double m1 = p.mass[0], m2 = p.mass[1];
+  EXPECT_NEAR(u[0].y, (0.5 * m1 * 1.0 + m2 * -2.0) / (0.5 * m1 + m2), 1e-12);
+  EXPECT_NEAR(u[0].z, m2 * 0.5 / (0.5 * m1 + m2), 1e-12);
+  EXPECT_NEAR(u[1].y, 1.0, 1e-12);
+  EXPECT_EQ(u[2].y, 0.0);
+  EXPECT_EQ(profile.samples(), 0);
+  const auto centre = profile.zone_centres();
+  EXPECT_NEAR(centre[0], 0.002, 1e-15);
+  EXPECT_NEAR(centre[2], 0.010, 1e-15);
+}

@@ -25,35 +25,57 @@ ZoneProfile::ZoneProfile(int axis, double lo, double hi, double thickness, doubl
   }
 }
 
-void ZoneProfile::sample(const ParticleStore& p) {
+// Calls visit(zone, partial volume, fraction of the sphere) for each zone free particle i overlaps.
+template <class Visit>
+void ZoneProfile::for_each_overlap(const ParticleStore& p, std::size_t i, Visit&& visit) const {
   const int zones = static_cast<int>(sums_.size());
+  const double r = p.radius[i];
+  const double c = p.position[i][axis_];
+  const int first = std::max(0, static_cast<int>(std::floor((c - r - lo_) / thickness_)));
+  const int last = std::min(zones - 1, static_cast<int>(std::floor((c + r - lo_) / thickness_)));
+  const double sphere = 4.0 / 3.0 * M_PI * r * r * r;
+  for (int z = first; z <= last; ++z) {
+    const double a = lo_ + z * thickness_;
+    const double part = sphere_slab_volume(r, c, a, std::min(hi_, a + thickness_));
+    if (part > 0.0) visit(z, part, part / sphere);
+  }
+}
+
+// Pass 1 of a sample: partial volumes, mass and momentum per zone, into scratch_.
+void ZoneProfile::fill_masses(const ParticleStore& p) {
   std::fill(scratch_.begin(), scratch_.end(), Sums{});
-  // Pass 1: partial volumes, mass and momentum per zone.
-  auto for_each_overlap = [&](std::size_t i, auto&& visit) {
-    const double r = p.radius[i];
-    const double c = p.position[i][axis_];
-    const int first = std::max(0, static_cast<int>(std::floor((c - r - lo_) / thickness_)));
-    const int last = std::min(zones - 1, static_cast<int>(std::floor((c + r - lo_) / thickness_)));
-    const double sphere = 4.0 / 3.0 * M_PI * r * r * r;
-    for (int z = first; z <= last; ++z) {
-      const double a = lo_ + z * thickness_;
-      const double part = sphere_slab_volume(r, c, a, std::min(hi_, a + thickness_));
-      if (part > 0.0) visit(z, part, part / sphere);
-    }
-  };
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.motion[i] != Motion::free) continue;
-    for_each_overlap(i, [&](int z, double part, double fraction) {
+    for_each_overlap(p, i, [&](int z, double part, double fraction) {
       const double m = p.mass[i] * fraction;
       scratch_[z].solid_volume += part;
       scratch_[z].mass += m;
       scratch_[z].momentum += m * p.velocity[i];
     });
   }
+}
+
+std::vector<Vec3> ZoneProfile::instantaneous_mean_velocity(const ParticleStore& p) {
+  fill_masses(p);
+  std::vector<Vec3> u(scratch_.size());
+  for (std::size_t z = 0; z < u.size(); ++z)
+    if (scratch_[z].mass > 0.0) u[z] = scratch_[z].momentum * (1.0 / scratch_[z].mass);
+  return u;
+}
+
+std::vector<double> ZoneProfile::zone_centres() const {
+  std::vector<double> centre(sums_.size());
+  for (std::size_t z = 0; z < centre.size(); ++z) centre[z] = 0.5 * (lo_ + z * thickness_ + std::min(hi_, lo_ + (z + 1) * thickness_));
+  return centre;
+}
+
+void ZoneProfile::sample(const ParticleStore& p) {
+  const int zones = static_cast<int>(sums_.size());
+  fill_masses(p);
   // Pass 2: fluctuations about the instantaneous zone mean, and second moments.
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.motion[i] != Motion::free) continue;
-    for_each_overlap(i, [&](int z, double, double fraction) {
+    for_each_overlap(p, i, [&](int z, double, double fraction) {
       const double m = p.mass[i] * fraction;
       const Vec3 u = scratch_[z].momentum * (1.0 / scratch_[z].mass);
       const Vec3 v = p.velocity[i];

@@ -31,6 +31,10 @@ class ZoneProfile {
   ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area);
   void sample(const ParticleStore& particles);  // one instantaneous sample, accumulated
   std::vector<ZoneAverages> averages() const;
+  // Mass-weighted (partial-volume) mean velocity of each zone now, not accumulated; zones without
+  // mass read zero. For the zone velocity histories of Lan's spectra (section 4.3).
+  std::vector<Vec3> instantaneous_mean_velocity(const ParticleStore& particles);
+  std::vector<double> zone_centres() const;  // m, along the axis
   long samples() const { return samples_; }
   int axis() const { return axis_; }
 
@@ -42,6 +46,10 @@ class ZoneProfile {
   int axis_;
   double lo_, hi_, thickness_;  // m; the last zone ends at hi_
   std::vector<double> zone_volume_;  // m^3; the top zone may be cut by the domain's upper bound
+  template <class Visit>
+  void for_each_overlap(const ParticleStore& p, std::size_t i, Visit&& visit) const;
+  void fill_masses(const ParticleStore& p);
+
   std::vector<Sums> sums_;
   std::vector<Sums> scratch_;
   long samples_ = 0;
