@@ -8,6 +8,7 @@
 
 #include "grainflow/analysis/correlation.hpp"
 #include "grainflow/analysis/diffusion.hpp"
+#include "grainflow/analysis/spectrum.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/hdf5_file.hpp"
@@ -62,14 +63,104 @@ double standard_error(const std::vector<double>& values) {
   return std::sqrt(sum2 / (n - 1.0) / n);
 }
 
+// zone_series.h5 -> analysis/zone_spectra.csv and analysis/floor_correlation.csv (Lan section 4.3):
+// Welch spectra of the floor's and each zone's velocity along gravity, and the delay of each zone
+// behind the floor from the peak of their cross-correlation, with the implied wave speed.
+void analyze_zone_series(const fs::path& dir) {
+  const fs::path file = dir / "zone_series.h5";
+  const io::H5Reader h5(file.string());
+  const io::H5Array u = h5.read("/zone_velocity");
+  const io::H5Array floor_v = h5.read("/floor_velocity"), floor_x = h5.read("/floor_position");
+  const std::vector<double> centre = h5.read("/zone_centre").values;
+  const double interval = h5.number("/", "interval");
+  const auto axis = static_cast<std::size_t>(h5.number("/", "gravity_axis"));
+  const std::size_t samples = u.shape.empty() ? 0 : u.shape[0], zones = centre.size();
+  if (samples < 16)
+    throw InputError(file.string(), "samples", "holds " + std::to_string(samples) + " samples: too few for a spectrum");
+  // Segments: the largest power of two up to a quarter of the record (7 half-overlapping segments
+  // or more), so each spectrum is an average, not one noisy periodogram.
+  std::size_t segment = 8;
+  while (segment * 2 <= samples / 4) segment *= 2;
+  std::vector<std::vector<double>> series(zones, std::vector<double>(samples));
+  for (std::size_t t = 0; t < samples; ++t)
+    for (std::size_t z = 0; z < zones; ++z) series[z][t] = u.values[(t * zones + z) * 3 + axis];
+  const auto floor_spectrum = analysis::welch_psd(floor_v.values, interval, segment);
+  std::vector<analysis::PowerSpectrum> spectra;
+  for (const auto& s : series) spectra.push_back(analysis::welch_psd(s, interval, segment));
+  io::write_atomically((dir / "analysis" / "zone_spectra.csv").string(), [&](std::ostream& out) {
+    out << "# one-sided power spectral density (Welch, Hann, 50% overlap, " << segment << "-sample segments, "
+        << floor_spectrum.segments << " segments) of the velocity along gravity: the floor and each zone's mean\n";
+    out << "# units: frequency Hz, psd (m/s)^2/Hz; zone k is centred at analysis/floor_correlation.csv's height\n";
+    out << "frequency,floor";
+    for (std::size_t z = 0; z < zones; ++z) out << ",zone_" << z;
+    out << '\n' << std::setprecision(10);
+    for (std::size_t k = 0; k < floor_spectrum.frequency.size(); ++k) {
+      out << floor_spectrum.frequency[k] << ',' << floor_spectrum.density[k];
+      for (const auto& s : spectra) out << ',' << s.density[k];
+      out << '\n';
+    }
+  });
+  double floor_mean = 0.0;
+  for (double x : floor_x.values) floor_mean += x / static_cast<double>(floor_x.values.size());
+  // The zone's response to a periodic floor repeats every period: its delay is the first peak at a
+  // lag in [0, one period) (Lan: the peak shifts right as the zone rises). Without a drive, the
+  // largest peak within a quarter of the record.
+  const double drive = h5.number("/", "drive_frequency");
+  const std::size_t max_lag = samples / 4;
+  const std::size_t period = drive > 0.0 ? static_cast<std::size_t>(std::ceil(1.0 / (drive * interval))) : 0;
+  auto delay_of = [&](const std::vector<double>& c) {
+    if (period == 0 || period > max_lag) return analysis::lag_of_maximum(c) * interval;
+    std::size_t best = max_lag;
+    for (std::size_t k = max_lag; k < max_lag + period; ++k)
+      if (c[k] > c[best]) best = k;
+    double shift = 0.0;  // parabola through the peak and its neighbours
+    const double a = c[best - 1], b = c[best], d = c[best + 1], curvature = a - 2.0 * b + d;
+    if (curvature < 0.0) shift = 0.5 * (a - d) / curvature;
+    return (static_cast<double>(best) - static_cast<double>(max_lag) + shift) * interval;
+  };
+  io::write_atomically((dir / "analysis" / "floor_correlation.csv").string(), [&](std::ostream& out) {
+    out << "# each zone's mean velocity along gravity against the floor's: lag of the cross-correlation peak"
+           " (zone behind floor > 0; the first peak within one drive period), the implied wave speed"
+           " = (zone centre - mean floor position) / delay, and the zone's spectral peak\n";
+    out << "# units: height m (above the mean floor), delay s, speed m/s, peak_frequency Hz, peak_psd (m/s)^2/Hz\n";
+    out << "zone,height,delay,speed,peak_frequency,peak_psd\n" << std::setprecision(10);
+    for (std::size_t z = 0; z < zones; ++z) {
+      const auto c = analysis::cross_correlation(floor_v.values, series[z], max_lag, true);
+      const double delay = delay_of(c);
+      const double height = centre[z] - floor_mean;
+      const double f = analysis::peak_frequency(spectra[z]);
+      double peak = 0.0;
+      for (std::size_t k = 0; k < spectra[z].frequency.size(); ++k)
+        if (spectra[z].frequency[k] == f) peak = spectra[z].density[k];
+      out << z << ',' << height << ',' << delay << ',' << (height > 0.0 ? analysis::propagation_speed(height, delay) : std::nan("")) << ',' << f << ','
+          << peak << '\n';
+    }
+  });
+  std::cout << "zone series: spectra of " << zones << " zones and the floor, " << samples << " samples (written to "
+            << (dir / "analysis").string() << "/zone_spectra.csv, floor_correlation.csv)\n";
+}
+
+void analyze_trajectory(const fs::path& dir, const AnalyzeOptions& options);
+
 }  // namespace
 
 int analyze_run(const std::string& output_directory, const AnalyzeOptions& options) {
   const fs::path dir(output_directory);
+  const bool trajectory = fs::exists(dir / "trajectory.h5"), zone_series = fs::exists(dir / "zone_series.h5");
+  if (!trajectory && !zone_series)
+    throw InputError((dir / "trajectory.h5").string(), "trajectory",
+                     "no trajectory.h5 or zone_series.h5 in this folder: add a [trajectory] or [zone_series] table to "
+                     "the case (docs/CASE_FILES.md) and run it");
+  fs::create_directories(dir / "analysis");
+  if (trajectory) analyze_trajectory(dir, options);
+  if (zone_series) analyze_zone_series(dir);
+  return 0;
+}
+
+namespace {
+
+void analyze_trajectory(const fs::path& dir, const AnalyzeOptions& options) {
   const fs::path file = dir / "trajectory.h5";
-  if (!fs::exists(file))
-    throw InputError(file.string(), "trajectory",
-                     "no trajectory.h5 in this folder: add a [trajectory] table to the case (docs/CASE_FILES.md) and run it");
   const io::H5Reader h5(file.string());
   const io::H5Array velocity = h5.read("/velocity"), position = h5.read("/position");
   if (velocity.shape.size() != 3 || velocity.shape[2] != 3 || position.shape != velocity.shape)
@@ -102,7 +193,6 @@ int analyze_run(const std::string& output_directory, const AnalyzeOptions& optio
     }
   }
 
-  fs::create_directories(dir / "analysis");
   io::write_atomically((dir / "analysis" / "vacf.csv").string(), [&](std::ostream& out) {
     out << "# velocity autocorrelation <v_a(t + lag) v_a(t)> over " << particles << " particles and " << samples
         << " samples (Lan 1994 eq. 3-2-6, per component eq. 4-4-1), and its running integral D_a(lag) (eq. 4-4-2)\n";
@@ -154,7 +244,7 @@ int analyze_run(const std::string& output_directory, const AnalyzeOptions& optio
   std::cout << "  D = " << (all.vacf_d[0] + all.vacf_d[1] + all.vacf_d[2]) / 3.0 << " / "
             << (all.msd_d[0] + all.msd_d[1] + all.msd_d[2]) / 3.0 << "   (written to "
             << (dir / "analysis").string() << "/)\n";
-  return 0;
 }
 
+}  // namespace
 }  // namespace grainflow::app

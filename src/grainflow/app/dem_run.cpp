@@ -120,6 +120,66 @@ struct TrajectoryOutput {
   }
 };
 
+// zone_series.h5: each zone's instantaneous mean velocity and the floor's motion at a fixed interval
+// ([zone_series], Lan 1994 section 4.3), for spectra and floor cross-correlations.
+struct ZoneSeriesOutput {
+  io::H5Writer file;
+  io::GrowingDataset time, zone_velocity, floor_position, floor_velocity;
+  double start = 0.0, interval = 0.0;
+  long taken = 0, requested = 0, next = 0;  // next: index of the next sample time start + k interval
+
+  ZoneSeriesOutput(const CaseConfig& c, const dem::DerivedQuantities& d, const observe::ZoneProfile& zones,
+                   const std::string& dir)
+      : file(dir + "/zone_series.h5"), requested(c.zone_series.samples) {
+    const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
+    interval = c.zone_series.interval > 0.0 ? c.zone_series.interval : 1.0 / (20.0 * f);
+    start = c.zone_series.start >= 0.0 ? c.zone_series.start : c.output.average_start;
+    const auto centres = zones.zone_centres();
+    file.write("/zone_centre", centres, {centres.size()});
+    file.attribute("/", "interval", interval);
+    file.attribute("/", "start", start);
+    file.attribute("/", "time_step", d.time_step);
+    file.attribute("/", "gravity_axis", static_cast<std::int64_t>(d.gravity_axis));
+    file.attribute("/", "drive_frequency", f);
+    file.attribute("/", "diameter", d.reference_diameter);
+    file.attribute("/", "case", c.path);
+    file.attribute("/", "version", std::string(kVersion));
+    file.attribute("/", "units", std::string("time s, zone_velocity m/s, floor_position m, floor_velocity m/s, zone_centre m"));
+    time = file.growing("/time", {}, 1024);
+    zone_velocity = file.growing("/zone_velocity", {centres.size(), 3}, 64);
+    floor_position = file.growing("/floor_position", {}, 1024);
+    floor_velocity = file.growing("/floor_velocity", {}, 1024);
+  }
+  // Samples at the first step at or after each start + k interval.
+  template <class State>
+  void observe(const State& st, observe::ZoneProfile& zones, const CaseConfig& c) {
+    if (taken >= requested || st.time < start + next * interval - 0.5 * st.time_step) return;
+    ++next;
+    double position = 0.0, velocity = 0.0;
+    for (const auto& wall : st.walls)
+      if (c.drive.enabled && wall.face == c.drive.face) {
+        position = wall.position;
+        velocity = wall.velocity[wall.axis];
+      }
+    const auto u = zones.instantaneous_mean_velocity(st.particles);
+    std::vector<double> row;
+    row.reserve(3 * u.size());
+    for (const Vec3& v : u) row.insert(row.end(), {v.x, v.y, v.z});
+    time.append(&st.time);
+    zone_velocity.append(row.data());
+    floor_position.append(&position);
+    floor_velocity.append(&velocity);
+    ++taken;
+  }
+  void finish(std::vector<std::string>& warnings) {
+    file.attribute("/", "samples", static_cast<std::int64_t>(taken));
+    if (taken < requested)
+      warnings.push_back("zone_series: the run ended after " + std::to_string(taken) + " of the " +
+                         std::to_string(requested) + " requested samples");
+    file.commit();
+  }
+};
+
 }  // namespace
 
 int run_dem(const CaseConfig& c, const RunOptions& options) {
@@ -155,6 +215,9 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   std::optional<TrajectoryOutput> trajectory;
   if (c.trajectory.enabled)
     std::visit([&](auto& e) { trajectory.emplace(c, derived, e.state().particles, dir); }, engine);
+
+  std::optional<ZoneSeriesOutput> zone_series;
+  if (c.zone_series.enabled) zone_series.emplace(c, derived, profile, dir);
 
   std::vector<TimeseriesRow> rows;
   std::vector<std::string> errors, warnings;
@@ -202,6 +265,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
           for (long step = 1; step <= total_steps; ++step) {
             e.step();
             if (trajectory) trajectory->sampler->observe(e.state().particles, e.state().box, e.state().time - dt, e.state().time);
+            if (zone_series) zone_series->observe(e.state(), profile, c);
             if (profile_schedule.due(step) && step >= average_from) profile.sample(e.state().particles);
             if (output_schedule.due(step)) {
               record(e);
@@ -222,6 +286,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   }
   progress.finish();
   if (trajectory) trajectory->finish(warnings);
+  if (zone_series) zone_series->finish(warnings);
   const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
 
   std::visit(

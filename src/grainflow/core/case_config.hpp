@@ -150,6 +150,15 @@ struct TrajectoryConfig {
   std::vector<std::uint32_t> particles;  // ids to follow; empty: every free particle
 };
 
+// [zone_series]: histories of each zone's instantaneous mean velocity and of the floor, sampled at
+// their own interval, for spectra and floor cross-correlations (Lan 1994 section 4.3); zone_series.h5.
+struct ZoneSeriesConfig {
+  bool enabled = false;
+  double start = -1.0;      // s; < 0: output.average_start
+  double interval = 0.0;    // s; 0: 1 / (20 f), f the drive frequency along the gravity axis
+  long long samples = 2048;
+};
+
 // One explicitly given particle (init = "file").
 struct InitialParticle {
   std::string species;
@@ -173,6 +182,7 @@ struct CaseConfig {
   RunConfig run;
   OutputConfig output;
   TrajectoryConfig trajectory;
+  ZoneSeriesConfig zone_series;
   std::vector<InitialParticle> initial_particles;  // read from particles.file
 };
 

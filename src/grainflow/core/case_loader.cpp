@@ -382,6 +382,20 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     }
     r.reject_unknown_keys();
   }
+  if (top.has("zone_series")) {
+    TomlReader r = top.table("zone_series");
+    auto& z = c.zone_series;
+    if (c.engine.kind != "dem") top.fail("zone_series", "zone velocity histories are implemented for the DEM engine only");
+    z.enabled = true;
+    z.start = r.number("start", -1.0);
+    if (r.has("start") && z.start < 0.0) r.fail("start", "must not be negative");
+    z.interval = r.number("interval", 0.0);
+    if (z.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
+    z.samples = r.integer("samples", z.samples);
+    if (z.samples < 16) r.fail("samples", "needs at least 16 samples for a spectrum");
+    if (z.samples > 100000000) r.fail("samples", "more than 10^8 samples is surely a mistake");
+    r.reject_unknown_keys();
+  }
   top.reject_unknown_keys();
   return c;
 }

@@ -118,6 +118,13 @@ void validate_dem(const CaseConfig& c) {
     fail(c, "species.count", "more than 2e8 particles cannot run on one machine");
   const double steps = c.run.duration / d.time_step;
   if (steps > 1e13) fail(c, "run.duration", "needs more than 1e13 time steps");
+  if (c.zone_series.enabled) {
+    const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
+    if (c.zone_series.interval == 0.0 && !(f > 0.0))
+      fail(c, "zone_series.interval", "needs a value: there is no drive along gravity to take 20 samples per period of");
+    const double interval = c.zone_series.interval > 0.0 ? c.zone_series.interval : 1.0 / (20.0 * f);
+    if (interval < d.time_step) fail(c, "zone_series.interval", "is shorter than one time step");
+  }
   if (c.trajectory.enabled) {
     const auto& t = c.trajectory;
     if (t.window > 0.0 && t.window < d.time_step) fail(c, "trajectory.window", "is shorter than one time step");
