@@ -56,6 +56,13 @@ BAD_CASES = [
      'frequency = [20.0, 0.0, 0.0]\n', "drive.face", "periodic"),
     ("averaging_window_in_collisions_with_dem", VALID + "average_start_collisions = 1000\n",
      "output.average_start_collisions", "event-driven"),
+    ("trajectory_too_few_samples", VALID + "\n[trajectory]\nsamples = 1\n", "trajectory.samples", "at least 2"),
+    ("trajectory_unknown_particle", VALID + "\n[trajectory]\nparticles = [3, 20]\n", "trajectory.particles",
+     "no particle with id 20"),
+    ("trajectory_lag_beyond_samples", VALID + "\n[trajectory]\nsamples = 100\nmax_lag = 100\n", "trajectory.max_lag",
+     "[0, samples)"),
+    ("zone_series_without_drive_or_interval", VALID + "\n[zone_series]\nsamples = 64\n", "zone_series.interval",
+     "needs a value"),
 ]
 
 

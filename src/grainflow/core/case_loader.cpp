@@ -54,6 +54,16 @@ int face_index(TomlReader& reader, const std::string& key, const std::string& na
   reader.fail(key, "unknown face '" + name + "' (valid: xlo, xhi, ylo, yhi, zlo, zhi)");
 }
 
+// The sampling window keys shared by [trajectory] and [zone_series]: start (< 0 when absent: the
+// caller's default) and samples, at least `fewest`.
+void read_sampling(TomlReader& r, double& start, long long& samples, long long fewest) {
+  start = r.number("start", -1.0);
+  if (r.has("start") && start < 0.0) r.fail("start", "must not be negative");
+  samples = r.integer("samples", samples);
+  if (samples < fewest) r.fail("samples", "needs at least " + std::to_string(fewest) + " samples");
+  if (samples > 100000000) r.fail("samples", "more than 10^8 samples is surely a mistake");
+}
+
 CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden) {
   CaseConfig c;
   c.path = file;
@@ -357,13 +367,9 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     auto& t = c.trajectory;
     if (c.engine.kind != "dem") top.fail("trajectory", "trajectory sampling is implemented for the DEM engine only");
     t.enabled = true;
-    t.start = r.number("start", -1.0);
-    if (r.has("start") && t.start < 0.0) r.fail("start", "must not be negative");
+    read_sampling(r, t.start, t.samples, 2);
     t.window = r.number("window", 0.0);
     if (t.window < 0.0) r.fail("window", "must not be negative (0 = half a collision time, Lan's t_s)");
-    t.samples = r.integer("samples", t.samples);
-    if (t.samples < 2) r.fail("samples", "needs at least 2 samples");
-    if (t.samples > 100000000) r.fail("samples", "more than 10^8 samples per particle is surely a mistake");
     t.max_lag = r.integer("max_lag", 0);
     if (t.max_lag < 0 || t.max_lag >= t.samples) r.fail("max_lag", "must lie in [0, samples) (0 = samples / 2)");
     if (const toml::node* ids = r.raw("particles")) {
@@ -387,13 +393,9 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     auto& z = c.zone_series;
     if (c.engine.kind != "dem") top.fail("zone_series", "zone velocity histories are implemented for the DEM engine only");
     z.enabled = true;
-    z.start = r.number("start", -1.0);
-    if (r.has("start") && z.start < 0.0) r.fail("start", "must not be negative");
+    read_sampling(r, z.start, z.samples, 16);
     z.interval = r.number("interval", 0.0);
     if (z.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
-    z.samples = r.integer("samples", z.samples);
-    if (z.samples < 16) r.fail("samples", "needs at least 16 samples for a spectrum");
-    if (z.samples > 100000000) r.fail("samples", "more than 10^8 samples is surely a mistake");
     r.reject_unknown_keys();
   }
   top.reject_unknown_keys();
