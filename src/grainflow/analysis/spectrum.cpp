@@ -50,10 +50,11 @@ PowerSpectrum welch_psd(std::span<const double> x, double sample_interval, std::
   return out;
 }
 
-double peak_frequency(const PowerSpectrum& s) {
-  if (s.density.size() < 2) throw std::invalid_argument("peak_frequency: the spectrum has no bin above zero frequency");
-  const auto peak = std::max_element(s.density.begin() + 1, s.density.end());
-  return s.frequency[static_cast<std::size_t>(peak - s.density.begin())];
+std::size_t peak_bin(const PowerSpectrum& s) {
+  if (s.density.size() < 2) throw std::invalid_argument("peak_bin: the spectrum has no bin above zero frequency");
+  return static_cast<std::size_t>(std::max_element(s.density.begin() + 1, s.density.end()) - s.density.begin());
 }
+
+double peak_frequency(const PowerSpectrum& s) { return s.frequency[peak_bin(s)]; }
 
 }  // namespace grainflow::analysis

@@ -26,6 +26,8 @@ PowerSpectrum welch_psd(std::span<const double> x, double sample_interval, std::
 
 // Frequency (Hz) of the largest density above zero frequency (the zero bin is distorted by the
 // per-segment mean removal); the bin's centre, so exact to half a bin.
+// Index of the largest bin above 0 Hz.
+std::size_t peak_bin(const PowerSpectrum& spectrum);
 double peak_frequency(const PowerSpectrum& spectrum);
 
 }  // namespace grainflow::analysis

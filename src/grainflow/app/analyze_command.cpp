@@ -34,6 +34,7 @@ Series component(const io::H5Array& a, std::size_t axis, std::size_t first, std:
 
 struct Estimates {
   std::vector<std::vector<double>> vacf, msd;  // per component, lags 0..max
+  std::vector<analysis::VacfIntegral> running; // per component: running integral and D
   double vacf_d[3], msd_d[3];                  // m^2/s per component
   std::size_t fit_first = 0, fit_last = 0;
 };
@@ -44,7 +45,8 @@ Estimates estimate(const io::H5Array& velocity, const io::H5Array& position, std
   for (std::size_t a = 0; a < 3; ++a) {
     e.vacf.push_back(analysis::autocorrelation(component(velocity, a, first, stride), max_lag));
     e.msd.push_back(analysis::mean_square_displacement(component(position, a, first, stride), max_lag));
-    e.vacf_d[a] = analysis::diffusion_from_vacf(e.vacf[a], interval).coefficient;
+    e.running.push_back(analysis::diffusion_from_vacf(e.vacf[a], interval));
+    e.vacf_d[a] = e.running[a].coefficient;
     const auto fit = analysis::diffusion_from_msd(e.msd[a], interval);
     e.msd_d[a] = fit.coefficient;
     e.fit_first = fit.first_lag;
@@ -128,12 +130,9 @@ void analyze_zone_series(const fs::path& dir) {
       const auto c = analysis::cross_correlation(floor_v.values, series[z], max_lag, true);
       const double delay = delay_of(c);
       const double height = centre[z] - floor_mean;
-      const double f = analysis::peak_frequency(spectra[z]);
-      double peak = 0.0;
-      for (std::size_t k = 0; k < spectra[z].frequency.size(); ++k)
-        if (spectra[z].frequency[k] == f) peak = spectra[z].density[k];
-      out << z << ',' << height << ',' << delay << ',' << (height > 0.0 ? analysis::propagation_speed(height, delay) : std::nan("")) << ',' << f << ','
-          << peak << '\n';
+      const std::size_t peak = analysis::peak_bin(spectra[z]);
+      out << z << ',' << height << ',' << delay << ',' << (height > 0.0 ? analysis::propagation_speed(height, delay) : std::nan("")) << ','
+          << spectra[z].frequency[peak] << ',' << spectra[z].density[peak] << '\n';
     }
   });
   std::cout << "zone series: spectra of " << zones << " zones and the floor, " << samples << " samples (written to "
@@ -198,8 +197,7 @@ void analyze_trajectory(const fs::path& dir, const AnalyzeOptions& options) {
         << " samples (Lan 1994 eq. 3-2-6, per component eq. 4-4-1), and its running integral D_a(lag) (eq. 4-4-2)\n";
     out << "# units: time s, vacf m^2/s^2, running_d m^2/s\n";
     out << "lag,time,vacf_x,vacf_y,vacf_z,vacf,running_d_x,running_d_y,running_d_z,running_d\n";
-    std::vector<analysis::VacfIntegral> running;
-    for (int a = 0; a < 3; ++a) running.push_back(analysis::diffusion_from_vacf(all.vacf[a], interval));
+    const auto& running = all.running;
     out << std::setprecision(10);
     for (std::size_t k = 0; k <= lags; ++k) {
       const double sum = all.vacf[0][k] + all.vacf[1][k] + all.vacf[2][k];

@@ -68,6 +68,41 @@ void write_profiles(const std::string& path, const observe::ZoneProfile& profile
   });
 }
 
+// The driven face's position and velocity along its axis (zero without a drive).
+struct FloorMotion {
+  double position = 0.0, velocity = 0.0;
+};
+template <class State>
+FloorMotion floor_motion(const State& st, const CaseConfig& c) {
+  FloorMotion m;
+  for (const auto& wall : st.walls)
+    if (c.drive.enabled && wall.face == c.drive.face) m = {wall.position, wall.velocity[wall.axis]};
+  return m;
+}
+
+// Attributes every sampled HDF5 file of a DEM run carries, so it can be read without the case.
+void write_run_attributes(io::H5Writer& file, const CaseConfig& c, const dem::DerivedQuantities& d, double start,
+                          const std::string& units) {
+  file.attribute("/", "start", start);
+  file.attribute("/", "time_step", d.time_step);
+  file.attribute("/", "diameter", d.reference_diameter);
+  file.attribute("/", "gravity_axis", static_cast<std::int64_t>(d.gravity_axis));
+  file.attribute("/", "case", c.path);
+  file.attribute("/", "version", std::string(kVersion));
+  file.attribute("/", "units", units);
+}
+
+// Commits a sampled file with the count taken (a shortened record is still valid data) and warns
+// when the run ended before all requested samples.
+void finish_samples(io::H5Writer& file, const std::string& table, long taken, long requested,
+                    std::vector<std::string>& warnings) {
+  file.attribute("/", "samples", static_cast<std::int64_t>(taken));
+  if (taken < requested)
+    warnings.push_back(table + ": the run ended after " + std::to_string(taken) + " of the " + std::to_string(requested) +
+                       " requested samples (" + table + ".start and samples need a longer run.duration)");
+  file.commit();
+}
+
 // trajectory.h5 and the sampler that fills it ([trajectory], Lan 1994 sections 3.2-3.3).
 struct TrajectoryOutput {
   io::H5Writer file;
@@ -87,17 +122,11 @@ struct TrajectoryOutput {
     const double start = t.start >= 0.0 ? t.start : c.output.average_start;
     std::vector<std::int64_t> id_column(ids.begin(), ids.end());
     file.write("/id", id_column);
+    write_run_attributes(file, c, d, start, "time s, velocity m/s, position m (unwrapped), window and time_step s");
     file.attribute("/", "window", window);
-    file.attribute("/", "start", start);
-    file.attribute("/", "time_step", d.time_step);
     file.attribute("/", "samples_requested", static_cast<std::int64_t>(t.samples));
     file.attribute("/", "max_lag", static_cast<std::int64_t>(t.max_lag > 0 ? t.max_lag : t.samples / 2));
-    file.attribute("/", "diameter", d.reference_diameter);
     file.attribute("/", "restitution", c.contact.restitution);
-    file.attribute("/", "gravity_axis", static_cast<std::int64_t>(d.gravity_axis));
-    file.attribute("/", "case", c.path);
-    file.attribute("/", "version", std::string(kVersion));
-    file.attribute("/", "units", std::string("time s, velocity m/s, position m (unwrapped), window and time_step s"));
     const auto n = static_cast<unsigned long long>(ids.size());
     time = file.growing("/time", {}, 1024);
     velocity = file.growing("/velocity", {n, 3}, 16);
@@ -109,15 +138,7 @@ struct TrajectoryOutput {
                       position.append(x.data());
                     });
   }
-  // Commits what was taken (a shortened trajectory is still valid data) and says if it is short.
-  void finish(std::vector<std::string>& warnings) {
-    file.attribute("/", "samples", static_cast<std::int64_t>(sampler->taken()));
-    if (sampler->taken() < requested)
-      warnings.push_back("trajectory: the run ended after " + std::to_string(sampler->taken()) + " of the " +
-                         std::to_string(requested) + " requested samples (trajectory.start, window and samples " +
-                         "need a longer run.duration)");
-    file.commit();
-  }
+  void finish(std::vector<std::string>& warnings) { finish_samples(file, "trajectory", sampler->taken(), requested, warnings); }
 };
 
 // zone_series.h5: each zone's instantaneous mean velocity and the floor's motion at a fixed interval
@@ -136,15 +157,9 @@ struct ZoneSeriesOutput {
     start = c.zone_series.start >= 0.0 ? c.zone_series.start : c.output.average_start;
     const auto centres = zones.zone_centres();
     file.write("/zone_centre", centres, {centres.size()});
+    write_run_attributes(file, c, d, start, "time s, zone_velocity m/s, floor_position m, floor_velocity m/s, zone_centre m");
     file.attribute("/", "interval", interval);
-    file.attribute("/", "start", start);
-    file.attribute("/", "time_step", d.time_step);
-    file.attribute("/", "gravity_axis", static_cast<std::int64_t>(d.gravity_axis));
     file.attribute("/", "drive_frequency", f);
-    file.attribute("/", "diameter", d.reference_diameter);
-    file.attribute("/", "case", c.path);
-    file.attribute("/", "version", std::string(kVersion));
-    file.attribute("/", "units", std::string("time s, zone_velocity m/s, floor_position m, floor_velocity m/s, zone_centre m"));
     time = file.growing("/time", {}, 1024);
     zone_velocity = file.growing("/zone_velocity", {centres.size(), 3}, 64);
     floor_position = file.growing("/floor_position", {}, 1024);
@@ -155,29 +170,18 @@ struct ZoneSeriesOutput {
   void observe(const State& st, observe::ZoneProfile& zones, const CaseConfig& c) {
     if (taken >= requested || st.time < start + next * interval - 0.5 * st.time_step) return;
     ++next;
-    double position = 0.0, velocity = 0.0;
-    for (const auto& wall : st.walls)
-      if (c.drive.enabled && wall.face == c.drive.face) {
-        position = wall.position;
-        velocity = wall.velocity[wall.axis];
-      }
+    const FloorMotion floor = floor_motion(st, c);
     const auto u = zones.instantaneous_mean_velocity(st.particles);
     std::vector<double> row;
     row.reserve(3 * u.size());
     for (const Vec3& v : u) row.insert(row.end(), {v.x, v.y, v.z});
     time.append(&st.time);
     zone_velocity.append(row.data());
-    floor_position.append(&position);
-    floor_velocity.append(&velocity);
+    floor_position.append(&floor.position);
+    floor_velocity.append(&floor.velocity);
     ++taken;
   }
-  void finish(std::vector<std::string>& warnings) {
-    file.attribute("/", "samples", static_cast<std::int64_t>(taken));
-    if (taken < requested)
-      warnings.push_back("zone_series: the run ended after " + std::to_string(taken) + " of the " +
-                         std::to_string(requested) + " requested samples");
-    file.commit();
-  }
+  void finish(std::vector<std::string>& warnings) { finish_samples(file, "zone_series", taken, requested, warnings); }
 };
 
 }  // namespace
@@ -232,13 +236,9 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     TimeseriesRow row{};
     row.time = st.time;
     row.global = observe::sample_global(st.particles, axis);
-    row.floor_position = 0.0;
-    row.floor_velocity = 0.0;
-    for (const auto& wall : st.walls)
-      if (c.drive.enabled && wall.face == c.drive.face) {
-        row.floor_position = wall.position;
-        row.floor_velocity = wall.velocity[wall.axis];
-      }
+    const FloorMotion floor = floor_motion(st, c);
+    row.floor_position = floor.position;
+    row.floor_velocity = floor.velocity;
     row.max_overlap_ratio = e.statistics().max_overlap_ratio;
     row.contacts = e.statistics().contacts;
     row.wall_contacts = e.statistics().wall_contacts;
