@@ -168,6 +168,15 @@ def main():
                   f"D_{name} from the MSD: {diffusion['d_msd_' + name]} vs {slope / 2}")
             check(diffusion["d_vacf_" + name + "_error"] > 0, f"D_{name}: no error bar")
         check("D_x" in stdout, f"analyze printed no summary: {stdout}")
+        # Savage's D (eqs. 4-3-3, 4-3-4) from the summary's cell-average T and bulk nu, with d and e
+        # from trajectory.h5, recomputed from the formula.
+        with open(os.path.join(out, "summary.json")) as f:
+            summary = json.load(f)
+        t, nu = summary["cell_temperature"], summary["bulk_solids_fraction"]
+        g0 = (2 - nu) / (2 * (1 - nu) ** 3)
+        expected = 0.003 * np.sqrt(np.pi * t) / (8 * (1 + 0.9) * nu * g0)
+        check("d_savage_dai" in diffusion and abs(diffusion["d_savage_dai"] / expected - 1) < 1e-9,
+              f"Savage-Dai D {diffusion.get('d_savage_dai')} vs {expected} from T = {t}, nu = {nu}")
 
         check_zone_series(exe, tmp)
 

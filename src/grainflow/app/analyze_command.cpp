@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <vector>
 
 #include "grainflow/analysis/correlation.hpp"
@@ -12,6 +13,7 @@
 #include "grainflow/core/error.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/hdf5_file.hpp"
+#include "grainflow/io/flat_json_reader.hpp"
 #include "grainflow/io/json_writer.hpp"
 
 namespace grainflow::app {
@@ -235,6 +237,28 @@ void analyze_trajectory(const fs::path& dir, const AnalyzeOptions& options) {
     json.number(std::string("d_msd_") + names[a], dm);
     json.number(std::string("d_msd_") + names[a] + "_error", standard_error(group_msd[a]));
   }
+  // Savage's kinetic-theory value (eqs. 4-3-3, 4-3-4) from the run's cell-average temperature and
+  // bulk solids fraction, as Lan compared them in Table 4.5.
+  std::optional<double> theory;
+  const fs::path summary_path = dir / "summary.json";
+  if (fs::exists(summary_path)) {
+    double temperature = 0.0, fraction = 0.0;
+    for (const auto& [key, value] : io::read_flat_json_file(summary_path.string())) {
+      if (value.kind != io::FlatJsonValue::Kind::number) continue;
+      if (key == "cell_temperature") temperature = std::stod(value.text);
+      if (key == "bulk_solids_fraction") fraction = std::stod(value.text);
+    }
+    {
+      const double diameter = h5.number("/", "diameter"), restitution = h5.number("/", "restitution");
+      if (temperature > 0.0 && fraction > 0.0 && fraction < 1.0) {
+        theory = analysis::savage_dai_diffusion(diameter, temperature, restitution, fraction);
+        json.number("cell_temperature", temperature);
+        json.number("bulk_solids_fraction", fraction);
+        json.number("restitution", restitution);
+        json.number("d_savage_dai", *theory);
+      }
+    }
+  }
   io::write_atomically((dir / "analysis" / "diffusion.json").string(), [&](std::ostream& out) { json.write(out); });
   std::cout << std::setprecision(4) << "diffusion (m^2/s), from the VACF integral / the MSD slope:\n";
   for (int a = 0; a < 3; ++a)
@@ -242,6 +266,7 @@ void analyze_trajectory(const fs::path& dir, const AnalyzeOptions& options) {
   std::cout << "  D = " << (all.vacf_d[0] + all.vacf_d[1] + all.vacf_d[2]) / 3.0 << " / "
             << (all.msd_d[0] + all.msd_d[1] + all.msd_d[2]) / 3.0 << "   (written to "
             << (dir / "analysis").string() << "/)\n";
+  if (theory) std::cout << "  D (Savage-Dai kinetic theory, cell-average T and bulk nu) = " << *theory << "\n";
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "grainflow/app/dem_run.hpp"
 #include "grainflow/app/run_support.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,9 +17,11 @@
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/hdf5_file.hpp"
 #include "grainflow/io/json_writer.hpp"
+#include "grainflow/analysis/block_average.hpp"
+#include "grainflow/app/dem_sampled_outputs.hpp"
 #include "grainflow/io/vtu_writer.hpp"
+#include "grainflow/observe/bed_surface.hpp"
 #include "grainflow/observe/global_sample.hpp"
-#include "grainflow/observe/trajectory_sampler.hpp"
 #include "grainflow/observe/zone_profile.hpp"
 
 namespace grainflow::app {
@@ -29,19 +32,26 @@ struct TimeseriesRow {
   observe::GlobalSample global;
   double floor_position, floor_velocity, max_overlap_ratio;
   long contacts, wall_contacts, rebuilds;
+  observe::BedSurface bed;
+  double cell_temperature;         // Lan's: about each zone's instantaneous mean
+  long collisions, wall_collisions;  // contacts begun since the start
 };
 
 void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>& rows) {
   io::write_atomically(path, [&](std::ostream& out) {
-    out << "# units: time s, kinetic_energy J, rotational_energy J, granular_temperature m^2/s^2, "
-           "mass_center_height m, floor_position m, floor_velocity m/s, max_overlap_over_diameter 1\n";
+    out << "# units: time s, kinetic_energy J, rotational_energy J, granular_temperature m^2/s^2 (about the whole bed's "
+           "mean velocity), mass_center_height m, floor_position m, floor_velocity m/s, max_overlap_over_diameter 1, "
+           "bed_height m (above the floor), bulk_solids_fraction 1, cell_temperature m^2/s^2 (Lan: about each zone's "
+           "instantaneous mean), collisions and wall_collisions: contacts begun since the start\n";
     out << "time,kinetic_energy,rotational_energy,granular_temperature,mass_center_height,floor_position,"
-           "floor_velocity,max_overlap_over_diameter,contacts,wall_contacts,neighbor_rebuilds\n";
+           "floor_velocity,max_overlap_over_diameter,contacts,wall_contacts,neighbor_rebuilds,bed_height,"
+           "bulk_solids_fraction,ballistic_particles,cell_temperature,collisions,wall_collisions\n";
     for (const auto& r : rows)
       out << r.time << ',' << r.global.kinetic_energy << ',' << r.global.rotational_energy << ','
           << r.global.granular_temperature << ',' << r.global.mass_center_height << ',' << r.floor_position << ','
           << r.floor_velocity << ',' << r.max_overlap_ratio << ',' << r.contacts << ',' << r.wall_contacts << ','
-          << r.rebuilds << '\n';
+          << r.rebuilds << ',' << r.bed.height << ',' << r.bed.bulk_solids_fraction << ',' << r.bed.ballistic << ','
+          << r.cell_temperature << ',' << r.collisions << ',' << r.wall_collisions << '\n';
   });
 }
 
@@ -51,138 +61,55 @@ void write_profiles(const std::string& path, const observe::ZoneProfile& profile
         << " samples; temperature = about the instantaneous zone mean (Lan), temperature_time_mean = about the"
            " long-term zone mean (Campbell)\n";
     out << "# units: position m, Y 1 (position / d), velocities m/s, temperatures m^2/s^2, W 1 (sqrt(T/(g d))), "
-           "kinetic_energy_density J/m^3\n";
+           "kinetic_energy_density J/m^3; *_error: standard errors by block averaging (nan: too few samples)\n";
     out << "zone,position_lo,position_hi,position,Y,solids_fraction,mean_velocity_x,mean_velocity_y,mean_velocity_z,"
-           "temperature_x,temperature_y,temperature_z,temperature,temperature_time_mean,W,kinetic_energy_density\n";
+           "temperature_x,temperature_y,temperature_z,temperature,temperature_time_mean,W,kinetic_energy_density,"
+           "solids_fraction_error,mean_velocity_y_error,temperature_error,temperature_time_mean_error,W_error\n";
     const auto zones = profile.averages();
     for (std::size_t z = 0; z < zones.size(); ++z) {
       const auto& a = zones[z];
       const double mid = 0.5 * (a.lo + a.hi);
       const double t = (a.temperature_lan.x + a.temperature_lan.y + a.temperature_lan.z) / 3.0;
       const double tm = (a.temperature_time_mean.x + a.temperature_time_mean.y + a.temperature_time_mean.z) / 3.0;
+      const double w = g > 0.0 ? std::sqrt(t / (g * diameter)) : 0.0;
+      // dW = dT / (2 sqrt(T g d)), first-order propagation.
+      const double w_error = t > 0.0 && g > 0.0 ? a.temperature_lan_error / (2.0 * std::sqrt(t * g * diameter)) : NAN;
       out << z << ',' << a.lo << ',' << a.hi << ',' << mid << ',' << mid / diameter << ',' << a.solids_fraction << ','
           << a.mean_velocity.x << ',' << a.mean_velocity.y << ',' << a.mean_velocity.z << ',' << a.temperature_lan.x
-          << ',' << a.temperature_lan.y << ',' << a.temperature_lan.z << ',' << t << ',' << tm << ','
-          << (g > 0.0 ? std::sqrt(t / (g * diameter)) : 0.0) << ',' << a.kinetic_energy_density << '\n';
+          << ',' << a.temperature_lan.y << ',' << a.temperature_lan.z << ',' << t << ',' << tm << ',' << w << ','
+          << a.kinetic_energy_density << ',' << a.solids_fraction_error << ',' << a.mean_velocity_error.y << ','
+          << a.temperature_lan_error << ',' << a.temperature_time_mean_error << ',' << w_error << '\n';
     }
   });
 }
 
-// The driven face's position and velocity along its axis (zero without a drive).
-struct FloorMotion {
-  double position = 0.0, velocity = 0.0;
+// Mean and block-averaged standard error of a time-series column over the rows from `from` on.
+struct MeanWithError {
+  double mean = 0.0, error = NAN;
+  long rows = 0;
 };
-template <class State>
-FloorMotion floor_motion(const State& st, const CaseConfig& c) {
-  FloorMotion m;
-  for (const auto& wall : st.walls)
-    if (c.drive.enabled && wall.face == c.drive.face) m = {wall.position, wall.velocity[wall.axis]};
+template <class Get>
+MeanWithError series_mean(const std::vector<TimeseriesRow>& rows, double from, Get&& get) {
+  std::vector<double> x;
+  for (const auto& r : rows)
+    if (r.time >= from - 1e-12) x.push_back(get(r));
+  MeanWithError m;
+  m.rows = static_cast<long>(x.size());
+  if (x.empty()) return m;
+  if (x.size() < 32) {  // too short to block: the mean alone
+    for (double v : x) m.mean += v / x.size();
+    return m;
+  }
+  const auto b = analysis::block_average(x);
+  m.mean = b.mean;
+  m.error = b.standard_error;
   return m;
 }
 
-// Attributes every sampled HDF5 file of a DEM run carries, so it can be read without the case.
-void write_run_attributes(io::H5Writer& file, const CaseConfig& c, const dem::DerivedQuantities& d, double start,
-                          const std::string& units) {
-  file.attribute("/", "start", start);
-  file.attribute("/", "time_step", d.time_step);
-  file.attribute("/", "diameter", d.reference_diameter);
-  file.attribute("/", "gravity_axis", static_cast<std::int64_t>(d.gravity_axis));
-  file.attribute("/", "case", c.path);
-  file.attribute("/", "version", std::string(kVersion));
-  file.attribute("/", "units", units);
+void put(io::JsonObject& summary, const std::string& key, const MeanWithError& m) {
+  summary.number(key, m.mean);
+  if (std::isfinite(m.error)) summary.number(key + "_error", m.error);
 }
-
-// Commits a sampled file with the count taken (a shortened record is still valid data) and warns
-// when the run ended before all requested samples.
-void finish_samples(io::H5Writer& file, const std::string& table, long taken, long requested,
-                    std::vector<std::string>& warnings) {
-  file.attribute("/", "samples", static_cast<std::int64_t>(taken));
-  if (taken < requested)
-    warnings.push_back(table + ": the run ended after " + std::to_string(taken) + " of the " + std::to_string(requested) +
-                       " requested samples (" + table + ".start and samples need a longer run.duration)");
-  file.commit();
-}
-
-// trajectory.h5 and the sampler that fills it ([trajectory], Lan 1994 sections 3.2-3.3).
-struct TrajectoryOutput {
-  io::H5Writer file;
-  io::GrowingDataset time, velocity, position;
-  std::optional<observe::TrajectorySampler> sampler;
-  long requested = 0;
-
-  TrajectoryOutput(const CaseConfig& c, const dem::DerivedQuantities& d, const ParticleStore& p, const std::string& dir)
-      : file(dir + "/trajectory.h5"), requested(c.trajectory.samples) {
-    const auto& t = c.trajectory;
-    std::vector<std::uint32_t> ids = t.particles;
-    if (ids.empty())
-      for (std::size_t i = 0; i < p.size(); ++i)
-        if (p.motion[i] == Motion::free) ids.push_back(p.id[i]);
-    std::sort(ids.begin(), ids.end());
-    const double window = t.window > 0.0 ? t.window : 0.5 * c.run.collision_steps * d.time_step;
-    const double start = t.start >= 0.0 ? t.start : c.output.average_start;
-    std::vector<std::int64_t> id_column(ids.begin(), ids.end());
-    file.write("/id", id_column);
-    write_run_attributes(file, c, d, start, "time s, velocity m/s, position m (unwrapped), window and time_step s");
-    file.attribute("/", "window", window);
-    file.attribute("/", "samples_requested", static_cast<std::int64_t>(t.samples));
-    file.attribute("/", "max_lag", static_cast<std::int64_t>(t.max_lag > 0 ? t.max_lag : t.samples / 2));
-    file.attribute("/", "restitution", c.contact.restitution);
-    const auto n = static_cast<unsigned long long>(ids.size());
-    time = file.growing("/time", {}, 1024);
-    velocity = file.growing("/velocity", {n, 3}, 16);
-    position = file.growing("/position", {n, 3}, 16);
-    sampler.emplace(std::move(ids), start, window, t.samples,
-                    [this](double when, const std::vector<double>& v, const std::vector<double>& x) {
-                      time.append(&when);
-                      velocity.append(v.data());
-                      position.append(x.data());
-                    });
-  }
-  void finish(std::vector<std::string>& warnings) { finish_samples(file, "trajectory", sampler->taken(), requested, warnings); }
-};
-
-// zone_series.h5: each zone's instantaneous mean velocity and the floor's motion at a fixed interval
-// ([zone_series], Lan 1994 section 4.3), for spectra and floor cross-correlations.
-struct ZoneSeriesOutput {
-  io::H5Writer file;
-  io::GrowingDataset time, zone_velocity, floor_position, floor_velocity;
-  double start = 0.0, interval = 0.0;
-  long taken = 0, requested = 0, next = 0;  // next: index of the next sample time start + k interval
-
-  ZoneSeriesOutput(const CaseConfig& c, const dem::DerivedQuantities& d, const observe::ZoneProfile& zones,
-                   const std::string& dir)
-      : file(dir + "/zone_series.h5"), requested(c.zone_series.samples) {
-    const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
-    interval = c.zone_series.interval > 0.0 ? c.zone_series.interval : 1.0 / (20.0 * f);
-    start = c.zone_series.start >= 0.0 ? c.zone_series.start : c.output.average_start;
-    const auto centres = zones.zone_centres();
-    file.write("/zone_centre", centres, {centres.size()});
-    write_run_attributes(file, c, d, start, "time s, zone_velocity m/s, floor_position m, floor_velocity m/s, zone_centre m");
-    file.attribute("/", "interval", interval);
-    file.attribute("/", "drive_frequency", f);
-    time = file.growing("/time", {}, 1024);
-    zone_velocity = file.growing("/zone_velocity", {centres.size(), 3}, 64);
-    floor_position = file.growing("/floor_position", {}, 1024);
-    floor_velocity = file.growing("/floor_velocity", {}, 1024);
-  }
-  // Samples at the first step at or after each start + k interval.
-  template <class State>
-  void observe(const State& st, observe::ZoneProfile& zones, const CaseConfig& c) {
-    if (taken >= requested || st.time < start + next * interval - 0.5 * st.time_step) return;
-    ++next;
-    const FloorMotion floor = floor_motion(st, c);
-    const auto u = zones.instantaneous_mean_velocity(st.particles);
-    std::vector<double> row;
-    row.reserve(3 * u.size());
-    for (const Vec3& v : u) row.insert(row.end(), {v.x, v.y, v.z});
-    time.append(&st.time);
-    zone_velocity.append(row.data());
-    floor_position.append(&floor.position);
-    floor_velocity.append(&floor.velocity);
-    ++taken;
-  }
-  void finish(std::vector<std::string>& warnings) { finish_samples(file, "zone_series", taken, requested, warnings); }
-};
 
 }  // namespace
 
@@ -223,6 +150,15 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   std::optional<ZoneSeriesOutput> zone_series;
   if (c.zone_series.enabled) zone_series.emplace(c, derived, profile, dir);
 
+  std::optional<FieldOutput> field;
+  if (c.field.enabled) field.emplace(c, derived, zones_lo);
+
+  std::optional<TracerOutput> tracers;
+  if (c.tracers.enabled) std::visit([&](auto& e) { tracers.emplace(c, derived, e.state().particles); }, engine);
+
+  const observe::BedSurfaceThresholds bed_thresholds{c.output.bed_gap_fraction, c.output.bed_surface_fraction};
+  const bool floor_below = c.gravity[axis] < 0.0;  // bed height needs gravity toward the low face
+
   std::vector<TimeseriesRow> rows;
   std::vector<std::string> errors, warnings;
   Progress progress(!options.quiet && ::isatty(2), c.run.duration);
@@ -243,6 +179,12 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     row.contacts = e.statistics().contacts;
     row.wall_contacts = e.statistics().wall_contacts;
     row.rebuilds = e.statistics().rebuilds;
+    row.collisions = e.statistics().collisions;
+    row.wall_collisions = e.statistics().wall_collisions;
+    if (floor_below)
+      row.bed = observe::measure_bed_surface(st.particles, axis, floor_position(st, c, axis), area,
+                                             derived.reference_diameter, bed_thresholds);
+    row.cell_temperature = profile.instantaneous_temperature(st.particles);
     e.statistics().max_overlap_ratio = 0.0;
     rows.push_back(row);
     // Radius expansion (section 2.2) overlaps growing spheres on purpose: monitor only after it.
@@ -266,6 +208,8 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
             e.step();
             if (trajectory) trajectory->sampler->observe(e.state().particles, e.state().box, e.state().time - dt, e.state().time);
             if (zone_series) zone_series->observe(e.state(), profile, c);
+            if (field) field->observe(e.state(), c);
+            if (tracers) tracers->observe(e, c);
             if (profile_schedule.due(step) && step >= average_from) profile.sample(e.state().particles);
             if (output_schedule.due(step)) {
               record(e);
@@ -273,6 +217,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
               const auto now = std::chrono::steady_clock::now();
               if (now - last_flush > std::chrono::seconds(30)) {
                 write_timeseries(dir + "/timeseries.csv", rows);
+                if (tracers) tracers->write(dir + "/tracers.csv");
                 last_flush = now;
               }
             }
@@ -298,6 +243,8 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         write_timeseries(dir + "/timeseries.csv", rows);
         write_profiles(dir + "/profiles.csv", profile, derived.reference_diameter, derived.gravity_magnitude);
         write_final_state(dir + "/final_state.csv", st.particles, st.species);
+        if (field) field->write(dir, c);
+        if (tracers) tracers->write(dir + "/tracers.csv");
 
         double mean_temperature = 0.0;
         long counted = 0;
@@ -325,6 +272,37 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         summary.number("rotational_energy", global.rotational_energy);
         summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
         summary.integer("profile_samples", profile.samples());
+        // Lan's dimensionless groups (eqs. 4-1-2, 4-1-3) and Gamma, so sweeps can plot against them.
+        summary.number("mass_holdup", derived.mass_holdup);
+        summary.number("boundary_fluctuation_velocity", derived.boundary_fluctuation_velocity);
+        summary.number("shaking_acceleration", derived.shaking_acceleration);
+        // Long-term means over the rows after output.average_start, with blocked standard errors.
+        const double from = c.output.average_start;
+        put(summary, "cell_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.cell_temperature; }));
+        if (floor_below) {
+          put(summary, "bed_height", series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.height; }));
+          put(summary, "bulk_solids_fraction",
+              series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.bulk_solids_fraction; }));
+        }
+        // Collisions per particle: contacts begun within the averaging window, per moving particle.
+        const auto first = std::find_if(rows.begin(), rows.end(), [&](const TimeseriesRow& r) { return r.time >= from - 1e-12; });
+        if (first != rows.end() && moving > 0 && rows.back().time > first->time) {
+          const double span = rows.back().time - first->time;
+          const double begun = 2.0 * static_cast<double>(rows.back().collisions - first->collisions);  // two partners each
+          summary.number("collisions_per_particle", begun / moving);
+          summary.number("collision_rate_per_particle", begun / moving / span);
+          summary.number("wall_collision_rate_per_particle",
+                         static_cast<double>(rows.back().wall_collisions - first->wall_collisions) / moving / span);
+        }
+        // Height of the long-term density peak above the floor's rest position, in diameters (Fig. A4.8).
+        const auto zones = profile.averages();
+        if (!zones.empty() && profile.samples() > 0) {
+          const auto peak = std::max_element(zones.begin(), zones.end(), [](const auto& a, const auto& b) {
+            return a.solids_fraction < b.solids_fraction;
+          });
+          summary.number("density_peak_Y", (0.5 * (peak->lo + peak->hi) - c.domain.lo[axis]) / derived.reference_diameter);
+        }
+        if (field) summary.number("convection_speed", field->field->convection_speed());
         summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
         exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
       },

@@ -39,6 +39,8 @@ struct SpeciesConfig {
   bool frozen = false;          // fixed in place, felt by others (e.g. a rough chute base)
   double youngs_modulus = 0.0;  // Pa, optional: for the Hertz-equivalent K1 (eqs. 2-5-5..2-5-9)
   double poisson_ratio = -1.0;  // optional, with youngs_modulus
+  std::optional<Vec3> position; // m: the one particle of this species starts here (init = random;
+                                // e.g. Lan's large sphere at the centre of the floor, section 5.2)
   double mass() const;          // kg, one sphere
 };
 
@@ -137,6 +139,31 @@ struct OutputConfig {
   double average_start = 0.0;     // s, long-term averages start here
   long long average_start_collisions = 0;  // edmd: ... and not before this many particle collisions
   double zone_thickness = 0.0;    // m, profile zones along gravity (0 = reference species diameter)
+  // Bed height and bulk solids fraction (Lan 1994 section 4.2; observe/bed_surface.hpp):
+  double bed_gap_fraction = 0.05;     // a zone above the densest one emptier than this ends the bed
+  double bed_surface_fraction = 0.1;  // the surface is the highest d/10 slice at least this full
+};
+
+// [field]: long-term and floor-phase mean velocities on a grid of cells in the plane of the gravity
+// axis and one horizontal axis (Lan 1994 Chapter 5, Fig. 5.1), and the average convection speed of
+// Table 5.1; convection.csv and convection_phases.csv.
+struct FieldConfig {
+  bool enabled = false;
+  int axis = 2;             // the horizontal axis of the plane (default z, Lan's cell length)
+  double cell = 0.0;        // m, cell length and height; 0 = reference species diameter
+  double start = -1.0;      // s; < 0: output.average_start
+  double interval = 0.0;    // s between samples; 0 = every time step (Lan's method)
+  int phase_bins = 8;       // bins of the floor cycle for the phase-averaged fields; 0 = none
+};
+
+// [tracers]: position, velocity and coordination number histories of chosen particles (Lan 1994
+// section 5.2, the large sphere; Figs. A5.12-A5.17); tracers.csv.
+struct TracersConfig {
+  bool enabled = false;
+  std::vector<std::uint32_t> particles;  // ids
+  std::vector<std::string> species;      // every particle of these species
+  double start = 0.0;       // s
+  double interval = 0.0;    // s; 0 = 1 / (20 f) with a drive along gravity, else output.interval
 };
 
 // [trajectory]: windowed samples of chosen particles' velocities and unwrapped positions for
@@ -183,6 +210,8 @@ struct CaseConfig {
   OutputConfig output;
   TrajectoryConfig trajectory;
   ZoneSeriesConfig zone_series;
+  FieldConfig field;
+  TracersConfig tracers;
   std::vector<InitialParticle> initial_particles;  // read from particles.file
 };
 

@@ -114,6 +114,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
       if (r.has("poisson_ratio") && !(s.poisson_ratio >= 0.0 && s.poisson_ratio < 0.5))
         r.fail("poisson_ratio", "must lie in [0, 0.5)");
       if (s.youngs_modulus > 0.0 && s.poisson_ratio < 0.0) s.poisson_ratio = 0.3;
+      if (r.has("position")) {
+        s.position = r.required_vec3("position");
+        if (s.count != 1) r.fail("position", "places one particle: the species needs count = 1");
+      }
       r.reject_unknown_keys();
       c.species.push_back(s);
     }
@@ -360,6 +364,11 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
       r.fail("average_start_collisions", "only the event-driven engine counts collisions (use average_start)");
     o.zone_thickness = r.number("zone_thickness", 0.0);
     if (o.zone_thickness < 0.0) r.fail("zone_thickness", "must not be negative");
+    o.bed_gap_fraction = r.number("bed_gap_fraction", o.bed_gap_fraction);
+    if (!(o.bed_gap_fraction > 0.0 && o.bed_gap_fraction < 0.74)) r.fail("bed_gap_fraction", "must lie in (0, 0.74)");
+    o.bed_surface_fraction = r.number("bed_surface_fraction", o.bed_surface_fraction);
+    if (!(o.bed_surface_fraction > 0.0 && o.bed_surface_fraction < 0.74))
+      r.fail("bed_surface_fraction", "must lie in (0, 0.74)");
     r.reject_unknown_keys();
   }
   if (top.has("trajectory")) {
@@ -396,6 +405,57 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     read_sampling(r, z.start, z.samples, 16);
     z.interval = r.number("interval", 0.0);
     if (z.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
+    r.reject_unknown_keys();
+  }
+  if (top.has("field")) {
+    TomlReader r = top.table("field");
+    auto& f = c.field;
+    if (c.engine.kind != "dem") top.fail("field", "velocity fields are implemented for the DEM engine only");
+    f.enabled = true;
+    const std::string axis = r.string("axis", "z");
+    if (axis != "x" && axis != "y" && axis != "z") r.fail("axis", "must be \"x\", \"y\" or \"z\"");
+    f.axis = axis[0] - 'x';
+    f.cell = r.number("cell", 0.0);
+    if (f.cell < 0.0) r.fail("cell", "must not be negative (0 = one diameter)");
+    f.start = r.number("start", -1.0);
+    if (r.has("start") && f.start < 0.0) r.fail("start", "must not be negative");
+    f.interval = r.number("interval", 0.0);
+    if (f.interval < 0.0) r.fail("interval", "must not be negative (0 = every time step)");
+    const long long bins = r.integer("phase_bins", f.phase_bins);
+    if (bins < 0 || bins > 360) r.fail("phase_bins", "must lie in [0, 360] (0 = no phase-binned fields)");
+    f.phase_bins = static_cast<int>(bins);
+    r.reject_unknown_keys();
+  }
+  if (top.has("tracers")) {
+    TomlReader r = top.table("tracers");
+    auto& t = c.tracers;
+    if (c.engine.kind != "dem") top.fail("tracers", "tracer histories are implemented for the DEM engine only");
+    t.enabled = true;
+    if (const toml::node* ids = r.raw("particles")) {
+      const auto* list = ids->as_array();
+      if (!list) r.fail("particles", "must be an array of particle ids");
+      for (const auto& item : *list) {
+        const auto value = item.value<std::int64_t>();
+        if (!value || *value < 0 || *value > 0xFFFFFFFFll) r.fail("particles", "ids must be non-negative integers");
+        t.particles.push_back(static_cast<std::uint32_t>(*value));
+      }
+    }
+    if (const toml::node* names = r.raw("species")) {
+      const auto* list = names->as_array();
+      if (!list) r.fail("species", "must be an array of species names");
+      for (const auto& item : *list) {
+        const auto name = item.value<std::string>();
+        if (!name) r.fail("species", "must be an array of species names");
+        const bool known = std::any_of(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == *name; });
+        if (!known) r.fail("species", "no species is named '" + *name + "'");
+        t.species.push_back(*name);
+      }
+    }
+    if (t.particles.empty() && t.species.empty()) r.fail("particles", "name particle ids or species to follow");
+    t.start = r.number("start", 0.0);
+    if (t.start < 0.0) r.fail("start", "must not be negative");
+    t.interval = r.number("interval", 0.0);
+    if (t.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
     r.reject_unknown_keys();
   }
   top.reject_unknown_keys();

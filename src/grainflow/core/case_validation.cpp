@@ -125,6 +125,32 @@ void validate_dem(const CaseConfig& c) {
     const double interval = c.zone_series.interval > 0.0 ? c.zone_series.interval : 1.0 / (20.0 * f);
     if (interval < d.time_step) fail(c, "zone_series.interval", "is shorter than one time step");
   }
+  for (const auto& s : c.species)
+    if (s.position) {
+      if (c.particles.init != "random")
+        fail(c, "species.position", "species '" + s.name + "': a fixed start position needs particles.init = \"random\"");
+      for (int axis = 0; axis < 3; ++axis)
+        if ((*s.position)[axis] < c.domain.lo[axis] || (*s.position)[axis] > c.domain.hi[axis])
+          fail(c, "species.position", "species '" + s.name + "' starts outside the domain on axis " + "xyz"[axis]);
+    }
+  if (c.field.enabled) {
+    if (c.field.axis == d.gravity_axis)
+      fail(c, "field.axis", "must be a horizontal axis; it is the gravity axis");
+    if (c.field.cell > 0.0 && c.field.cell < 0.1 * d.reference_diameter)
+      fail(c, "field.cell", "is under a tenth of a diameter: most cells would stay empty");
+    const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
+    if (c.field.phase_bins > 0 && !(f > 0.0))
+      fail(c, "field.phase_bins", "needs a drive along gravity (set phase_bins = 0 for the long-term field only)");
+    if (c.field.interval > 0.0 && c.field.interval < d.time_step) fail(c, "field.interval", "is shorter than one time step");
+  }
+  if (c.tracers.enabled) {
+    const long total = d.moving_particles + d.frozen_particles;
+    for (auto id : c.tracers.particles)
+      if (id >= static_cast<std::uint64_t>(total))
+        fail(c, "tracers.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
+                                         std::to_string(total - 1) + ")");
+    if (c.tracers.interval > 0.0 && c.tracers.interval < d.time_step) fail(c, "tracers.interval", "is shorter than one time step");
+  }
   if (c.trajectory.enabled) {
     const auto& t = c.trajectory;
     if (t.window > 0.0 && t.window < d.time_step) fail(c, "trajectory.window", "is shorter than one time step");

@@ -26,6 +26,8 @@ struct ContactStatistics {
   long contacts = 0;               // particle-particle contacts at the last force evaluation
   long wall_contacts = 0;
   long rebuilds = 0;
+  long collisions = 0;       // particle-particle contacts begun since the start (Lan's collision count)
+  long wall_collisions = 0;  // particle-wall contacts begun since the start
 };
 
 template <class Law>
@@ -90,6 +92,20 @@ class DemEngine {
     }
     pair_forces(history_dt);
     wall_forces(history_dt);
+  }
+
+  // Particles and walls particle i touches now (its coordination number, Lan 1994 Fig. A5.17).
+  // Scans the whole pair list: meant for a few tracers at output times, not for every particle.
+  struct Coordination {
+    int particles = 0, walls = 0;
+  };
+  Coordination coordination(std::size_t i) const {
+    Coordination c;
+    for (std::size_t a = 0; a + 1 < pairs_.offsets.size(); ++a)
+      for (std::uint32_t k = pairs_.offsets[a]; k < pairs_.offsets[a + 1]; ++k)
+        if (contacts_.pair_touching[k] && (a == i || pairs_.partner[k] == i)) ++c.particles;
+    for (const auto& touching : contacts_.wall_touching) c.walls += touching[i] != 0;
+    return c;
   }
 
   // Positions with periodic crossings undone, for diffusion and outputs.
@@ -197,8 +213,8 @@ class DemEngine {
       thread_torque_.resize(threads);
     }
     double max_ratio = stats_.max_overlap_ratio;
-    long contacts = 0;
-#pragma omp parallel num_threads(threads) reduction(max : max_ratio) reduction(+ : contacts)
+    long contacts = 0, begun = 0;
+#pragma omp parallel num_threads(threads) reduction(max : max_ratio) reduction(+ : contacts, begun)
     {
 #ifdef _OPENMP
       const int t = omp_get_thread_num();
@@ -230,6 +246,7 @@ class DemEngine {
           if (!contacts_.pair_touching[k]) {
             contacts_.pair_touching[k] = 1;
             contacts_.pair_state[k] = State{};
+            ++begun;
           }
           const double r = std::sqrt(r2);
           ContactKinematics c;
@@ -265,12 +282,13 @@ class DemEngine {
     }
     stats_.max_overlap_ratio = max_ratio;
     stats_.contacts = contacts;
+    stats_.collisions += begun;
   }
 
   void wall_forces(double dt) {
     ParticleStore& p = s_.particles;
     const std::size_t n = p.size();
-    long wall_contacts = 0;
+    long wall_contacts = 0, begun = 0;
     double max_ratio = stats_.max_overlap_ratio;
     for (std::size_t w = 0; w < s_.walls.size(); ++w) {
       const FlatWall& wall = s_.walls[w];
@@ -279,7 +297,7 @@ class DemEngine {
       auto& touching = contacts_.wall_touching[w];
       Vec3 normal;
       normal[wall.axis] = wall.inward;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : wall_contacts) reduction(max : max_ratio)
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : wall_contacts, begun) reduction(max : max_ratio)
       for (std::size_t i = 0; i < n; ++i) {
         if (p.motion[i] != Motion::free) continue;
         const double ri = p.radius[i];
@@ -291,6 +309,7 @@ class DemEngine {
         if (!touching[i]) {
           touching[i] = 1;
           states[i] = State{};
+          ++begun;
         }
         ContactKinematics c;
         c.normal = normal;
@@ -307,6 +326,7 @@ class DemEngine {
       }
     }
     stats_.wall_contacts = wall_contacts;
+    stats_.wall_collisions += begun;
     stats_.max_overlap_ratio = max_ratio;
   }
 

@@ -122,18 +122,38 @@ void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
   const auto sequence = species_sequence(c, rng);
   const std::size_t first = s.particles.size();
   std::uniform_real_distribution<double> unit(0.0, 1.0);
+  // Others are drawn clear of placed spheres, so those keep their spot and full size.
+  std::vector<std::pair<Vec3, double>> placed;
+  for (const auto& species : c.species)
+    if (species.position) placed.push_back({*species.position, 0.5 * species.diameter});
+  auto clear_of_placed = [&](const Vec3& x, double r) {
+    for (const auto& [centre, radius] : placed)
+      if (norm(s.box.minimum_image(x, centre)) < radius + r) return false;
+    return true;
+  };
   for (int sp : sequence) {
     Vec3 x;
     const double r = 0.5 * c.species[sp].diameter;
-    for (int axis = 0; axis < 3; ++axis) {
-      // Keep centres at least a radius inside solid faces of the region (clear of the bumps).
-      double margin_lo = 0.0, margin_hi = 0.0;
-      if (!c.domain.periodic(axis)) {
-        margin_lo = r + bump_clearance(c, axis * 2);
-        margin_hi = r + bump_clearance(c, axis * 2 + 1);
-      }
-      x[axis] = lo[axis] + margin_lo + unit(rng) * (hi[axis] - lo[axis] - margin_lo - margin_hi);
+    if (c.species[sp].position) {
+      // A placed sphere (Lan's large sphere on the floor): the others are drawn clear of it.
+      add_particle(s.particles, c.species[sp], sp, c.species[sp].diameter, *c.species[sp].position,
+                   c.species[sp].frozen ? Motion::frozen : Motion::free);
+      continue;
     }
+    long draws = 0;
+    do {
+      if (++draws > 100000)
+        throw InputError(c.path, "species.position", "the placement region has no room left around the placed spheres");
+      for (int axis = 0; axis < 3; ++axis) {
+        // Keep centres at least a radius inside solid faces of the region (clear of the bumps).
+        double margin_lo = 0.0, margin_hi = 0.0;
+        if (!c.domain.periodic(axis)) {
+          margin_lo = r + bump_clearance(c, axis * 2);
+          margin_hi = r + bump_clearance(c, axis * 2 + 1);
+        }
+        x[axis] = lo[axis] + margin_lo + unit(rng) * (hi[axis] - lo[axis] - margin_lo - margin_hi);
+      }
+    } while (!clear_of_placed(x, r));
     add_particle(s.particles, c.species[sp], sp, c.species[sp].diameter, x,
                  c.species[sp].frozen ? Motion::frozen : Motion::free);
   }

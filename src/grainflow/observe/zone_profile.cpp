@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "grainflow/analysis/block_average.hpp"
 
 namespace grainflow::observe {
 
@@ -69,10 +72,8 @@ std::vector<double> ZoneProfile::zone_centres() const {
   return centre;
 }
 
-void ZoneProfile::sample(const ParticleStore& p) {
-  const int zones = static_cast<int>(sums_.size());
-  fill_masses(p);
-  // Pass 2: fluctuations about the instantaneous zone mean, and second moments.
+// Pass 2 of a sample: fluctuations about the instantaneous zone mean and second moments, into scratch_.
+void ZoneProfile::fill_fluctuations(const ParticleStore& p) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.motion[i] != Motion::free) continue;
     for_each_overlap(p, i, [&](int z, double, double fraction) {
@@ -84,14 +85,48 @@ void ZoneProfile::sample(const ParticleStore& p) {
       scratch_[z].second_moment += Vec3{m * v.x * v.x, m * v.y * v.y, m * v.z * v.z};
     });
   }
-  for (int z = 0; z < zones; ++z) {
-    sums_[z].mass += scratch_[z].mass;
-    sums_[z].solid_volume += scratch_[z].solid_volume;
-    sums_[z].momentum += scratch_[z].momentum;
-    sums_[z].second_moment += scratch_[z].second_moment;
-    sums_[z].fluctuation_lan += scratch_[z].fluctuation_lan;
+}
+
+void ZoneProfile::add(std::vector<Sums>& to, const std::vector<Sums>& from) {
+  for (std::size_t z = 0; z < to.size(); ++z) {
+    to[z].mass += from[z].mass;
+    to[z].solid_volume += from[z].solid_volume;
+    to[z].momentum += from[z].momentum;
+    to[z].second_moment += from[z].second_moment;
+    to[z].fluctuation_lan += from[z].fluctuation_lan;
   }
+}
+
+double ZoneProfile::instantaneous_temperature(const ParticleStore& p) {
+  fill_masses(p);
+  fill_fluctuations(p);
+  double mass = 0.0, fluctuation = 0.0;
+  for (const Sums& s : scratch_) {
+    mass += s.mass;
+    fluctuation += s.fluctuation_lan.x + s.fluctuation_lan.y + s.fluctuation_lan.z;
+  }
+  return mass > 0.0 ? fluctuation / (3.0 * mass) : 0.0;
+}
+
+void ZoneProfile::sample(const ParticleStore& p) {
+  fill_masses(p);
+  fill_fluctuations(p);
+  add(sums_, scratch_);
   ++samples_;
+  if (open_block_.empty()) open_block_.assign(sums_.size(), Sums{});
+  add(open_block_, scratch_);
+  if (++open_samples_ < block_length_) return;
+  blocks_.push_back(open_block_);
+  open_block_.assign(sums_.size(), Sums{});
+  open_samples_ = 0;
+  if (blocks_.size() < kMaxBlocks) return;
+  // Full: merge neighbours, so the blocks stay contiguous and of equal length.
+  for (std::size_t b = 0; b < kMaxBlocks / 2; ++b) {
+    blocks_[b] = blocks_[2 * b];
+    add(blocks_[b], blocks_[2 * b + 1]);
+  }
+  blocks_.resize(kMaxBlocks / 2);
+  block_length_ *= 2;
 }
 
 std::vector<ZoneAverages> ZoneProfile::averages() const {
@@ -112,7 +147,39 @@ std::vector<ZoneAverages> ZoneProfile::averages() const {
     for (int axis = 0; axis < 3; ++axis)
       a.temperature_time_mean[axis] = std::max(0.0, s.second_moment[axis] / s.mass - a.mean_velocity[axis] * a.mean_velocity[axis]);
   }
+  add_errors(out);
   return out;
+}
+
+// Standard error of the mean of per-block values (NaN with too few blocks to say).
+static double blocked_error(const std::vector<double>& per_block) {
+  if (per_block.size() < 2 * ZoneProfile::kMinErrorBlocks) return std::numeric_limits<double>::quiet_NaN();
+  return analysis::block_average(per_block, ZoneProfile::kMinErrorBlocks).standard_error;
+}
+
+void ZoneProfile::add_errors(std::vector<ZoneAverages>& out) const {
+  for (std::size_t z = 0; z < out.size(); ++z) {
+    std::vector<double> nu, lan, time_mean;
+    std::array<std::vector<double>, 3> u;
+    for (const auto& block : blocks_) {
+      const Sums& s = block[z];
+      nu.push_back(s.solid_volume / (zone_volume_[z] * block_length_));
+      if (s.mass <= 0.0) continue;  // velocity and temperature are undefined in an empty block
+      double tm = 0.0;
+      for (int axis = 0; axis < 3; ++axis) {
+        const double mean = s.momentum[axis] / s.mass;
+        u[axis].push_back(mean);
+        tm += std::max(0.0, s.second_moment[axis] / s.mass - mean * mean) / 3.0;
+      }
+      lan.push_back((s.fluctuation_lan.x + s.fluctuation_lan.y + s.fluctuation_lan.z) / (3.0 * s.mass));
+      time_mean.push_back(tm);
+    }
+    ZoneAverages& a = out[z];
+    a.solids_fraction_error = blocked_error(nu);
+    for (int axis = 0; axis < 3; ++axis) a.mean_velocity_error[axis] = blocked_error(u[axis]);
+    a.temperature_lan_error = blocked_error(lan);
+    a.temperature_time_mean_error = blocked_error(time_mean);
+  }
 }
 
 }  // namespace grainflow::observe

@@ -3,6 +3,9 @@
 // temperature, long-term averaged over samples. Two temperatures are kept, named distinctly:
 //  - temperature_lan: about the instantaneous zone mean u(y,t) (eqs. 3-1-5, 3-1-9),
 //  - temperature_time_mean: about the long-term zone mean velocity (Campbell's convention).
+// Error bars: samples are summed into contiguous blocks (at most kMaxBlocks; when full, neighbours
+// merge and the block length doubles), and each long-term average's standard error comes from
+// Flyvbjerg-Petersen blocking of its per-block values (analysis/block_average).
 #pragma once
 
 #include <array>
@@ -23,6 +26,11 @@ struct ZoneAverages {
   Vec3 temperature_time_mean;           // m^2/s^2 per component
   double kinetic_energy_density = 0.0;  // J/m^3 of fluctuations about the zone mean (eq. 3-1-10)
   double mass = 0.0;                    // kg, mean over samples
+  // Standard errors of the long-term averages (NaN until there are 2 kMinErrorBlocks full blocks).
+  double solids_fraction_error = 0.0;
+  Vec3 mean_velocity_error;             // m/s
+  double temperature_lan_error = 0.0;   // m^2/s^2, of the total (mean of the three components)
+  double temperature_time_mean_error = 0.0;
 };
 
 class ZoneProfile {
@@ -35,6 +43,12 @@ class ZoneProfile {
   // mass read zero. For the zone velocity histories of Lan's spectra (section 4.3).
   std::vector<Vec3> instantaneous_mean_velocity(const ParticleStore& particles);
   std::vector<double> zone_centres() const;  // m, along the axis
+  // Lan's cell-average granular temperature now: the mass-weighted mean over zones of each zone's
+  // temperature about its instantaneous mean, (1/3) sum m |v - u(y,t)|^2 / sum m. Not accumulated.
+  double instantaneous_temperature(const ParticleStore& particles);
+  // Full blocks available for the error bars; below 2 * kMinErrorBlocks the errors read NaN.
+  long error_blocks() const { return static_cast<long>(blocks_.size()); }
+  static constexpr std::size_t kMaxBlocks = 512, kMinErrorBlocks = 8;
   long samples() const { return samples_; }
   int axis() const { return axis_; }
 
@@ -49,10 +63,17 @@ class ZoneProfile {
   template <class Visit>
   void for_each_overlap(const ParticleStore& p, std::size_t i, Visit&& visit) const;
   void fill_masses(const ParticleStore& p);
+  void fill_fluctuations(const ParticleStore& p);
+  static void add(std::vector<Sums>& to, const std::vector<Sums>& from);
+  void add_errors(std::vector<ZoneAverages>& out) const;
 
   std::vector<Sums> sums_;
   std::vector<Sums> scratch_;
   long samples_ = 0;
+  // Block sums for the error bars: full blocks of block_length_ samples each, and the open one.
+  std::vector<std::vector<Sums>> blocks_;
+  std::vector<Sums> open_block_;
+  long block_length_ = 1, open_samples_ = 0;
 };
 
 }  // namespace grainflow::observe
