@@ -326,7 +326,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
         summary.integer("profile_samples", profile.samples());
         summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
-        exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
+        exit_status = finish_summary(summary, dir, errors, warnings, exit_status, options.echo_errors);
       },
       engine);
   return exit_status;
