@@ -304,7 +304,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         }
         if (field) summary.number("convection_speed", field->field->convection_speed());
         summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
-        exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
+        exit_status = finish_summary(summary, dir, errors, warnings, exit_status, options.echo_errors);
       },
       engine);
   return exit_status;

@@ -1,4 +1,4 @@
-// The `grainflow` command line (INTERFACE.md): run, check, plot, analyze, sweep, cases, --version.
+// The `grainflow` command line (INTERFACE.md): run, check, plot, analyze, sweep, calibrate, cases, --version.
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "grainflow/app/analyze_command.hpp"
+#include "grainflow/app/calibrate_command.hpp"
 #include "grainflow/app/check_command.hpp"
 #include "grainflow/app/dem_run.hpp"
 #include "grainflow/app/edmd_run.hpp"
@@ -107,6 +108,26 @@ int main(int argc, char** argv) {
   sweep->add_option("--threads", sweep_options.threads, "OpenMP threads of each run (default 1)")->check(CLI::Range(1, 1024));
   sweep->add_flag("--quiet", sweep_options.quiet, "no progress lines");
 
+  // grainflow calibrate: K1 by Lan's maximum-overlap procedure (app/calibrate_command.hpp).
+  app::CalibrateOptions calibrate_options;
+  double calibrate_duration = 0.0, calibrate_start_k1 = 0.0;
+  auto* calibrate =
+      app.add_subcommand("calibrate", "find the smallest K1 that keeps the max overlap <= 1% d (Lan 4.1.3)");
+  calibrate->add_option("case", calibrate_options.case_path, "case file (TOML, DEM, walton_braun)")->required();
+  calibrate->add_option("-o,--output", calibrate_options.output_directory,
+                        "output folder (default: runs/calibrate_<case name>)");
+  auto* duration_option =
+      calibrate->add_option("--duration", calibrate_duration, "simulated s per trial (default: the case's run.duration)");
+  calibrate->add_option("--factor", calibrate_options.factor, "K1 changes by this factor between trials (default 1.25)");
+  calibrate->add_option("--limit", calibrate_options.limit, "largest acceptable max overlap / d (default 0.01)");
+  auto* start_option =
+      calibrate->add_option("--start-k1", calibrate_start_k1, "first trial K1 in N/m (default: Hertz-equivalent K1 / 100)");
+  calibrate->add_option("--max-trials", calibrate_options.max_trials, "most trials to run (default 20)");
+  calibrate->add_option("--set", calibrate_options.overrides, "override a case key in every trial")
+      ->type_name("KEY=VALUE")->allow_extra_args(false);
+  calibrate->add_option("--threads", calibrate_options.threads, "OpenMP threads (default 1)")->check(CLI::Range(1, 1024));
+  calibrate->add_flag("--quiet", calibrate_options.quiet, "no progress line during the trials");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -119,6 +140,11 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("plot")) return plot(plot_dir);
     if (app.got_subcommand("analyze")) return app::analyze_run(analyze_dir, analyze_options);
     if (app.got_subcommand("sweep")) return app::run_sweep(sweep_options, std::vector<std::string>(argv, argv + argc));
+    if (app.got_subcommand("calibrate")) {
+      if (*duration_option) calibrate_options.duration = calibrate_duration;
+      if (*start_option) calibrate_options.start_k1 = calibrate_start_k1;
+      return app::run_calibration(calibrate_options);
+    }
     const CaseConfig c = load_case(case_path, overrides);
     if (app.got_subcommand("check")) {
       app::print_check(c, std::cout);

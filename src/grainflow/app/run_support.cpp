@@ -19,11 +19,12 @@ void Progress::update(double time) {
 }
 
 int finish_summary(io::JsonObject& summary, const std::string& dir, const std::vector<std::string>& errors,
-                   const std::vector<std::string>& warnings, int exit_status) {
+                   const std::vector<std::string>& warnings, int exit_status, bool echo_errors) {
   summary.strings("errors", errors);
   summary.strings("warnings", warnings);
   io::write_atomically(dir + "/summary.json", [&](std::ostream& out) { summary.write(out); });
-  for (const auto& e : errors) std::cerr << "grainflow: run failed: " << e << "\n";
+  if (echo_errors)
+    for (const auto& e : errors) std::cerr << "grainflow: run failed: " << e << "\n";
   return exit_status;
 }
 

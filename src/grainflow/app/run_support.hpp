@@ -52,9 +52,9 @@ class Progress {
 };
 
 // Adds errors and warnings to summary.json, writes it atomically into `dir`, and repeats the
-// errors on stderr; returns `exit_status`.
+// errors on stderr (unless `echo_errors` is false); returns `exit_status`.
 int finish_summary(io::JsonObject& summary, const std::string& dir, const std::vector<std::string>& errors,
-                   const std::vector<std::string>& warnings, int exit_status);
+                   const std::vector<std::string>& warnings, int exit_status, bool echo_errors = true);
 
 // final_state.csv: every particle by id, with exact doubles so the state can start another run.
 void write_final_state(const std::string& path, const ParticleStore& p, const std::vector<SpeciesConfig>& species);

@@ -488,36 +488,48 @@ void read_initial_particles(CaseConfig& c, const std::filesystem::path& base_dir
 }
 
 CaseConfig load_from_table(toml::table& root, const std::string& label, const std::vector<std::string>& overrides,
-                           const std::filesystem::path& base_dir) {
+                           const std::filesystem::path& base_dir, bool validate = true) {
   std::set<std::string> overridden;
   for (const auto& assignment : overrides) overridden.insert(apply_override(root, assignment, label));
   CaseConfig c = parse(root, label, overridden);
   if (c.particles.init == "file") read_initial_particles(c, base_dir);
-  validate_case(c);
+  if (validate) validate_case(c);
   return c;
+}
+
+toml::table parse_toml(const std::string& text, const std::string& label) {
+  try {
+    return toml::parse(text, label);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
+    throw InputError(label, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
+  }
+}
+
+std::string read_case_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot open the case file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
 }
 
 }  // namespace
 
 CaseConfig load_case_from_string(const std::string& text, const std::string& label,
                                  const std::vector<std::string>& overrides) {
-  toml::table root;
-  try {
-    root = toml::parse(text, label);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream where;
-    where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
-    throw InputError(label, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
-  }
+  toml::table root = parse_toml(text, label);
   return load_from_table(root, label, overrides, std::filesystem::path(label).parent_path());
 }
 
 CaseConfig load_case(const std::string& path, const std::vector<std::string>& overrides) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the case file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return load_case_from_string(buffer.str(), path, overrides);
+  return load_case_from_string(read_case_file(path), path, overrides);
+}
+
+CaseConfig load_case_unvalidated(const std::string& path, const std::vector<std::string>& overrides) {
+  toml::table root = parse_toml(read_case_file(path), path);
+  return load_from_table(root, path, overrides, std::filesystem::path(path).parent_path(), false);
 }
 
 }  // namespace grainflow

@@ -13,4 +13,9 @@ CaseConfig load_case(const std::string& path, const std::vector<std::string>& ov
 CaseConfig load_case_from_string(const std::string& text, const std::string& label,
                                  const std::vector<std::string>& overrides = {});
 
+// The case read and each key checked, but without the checks of validate_case that combine keys
+// (time step against contact duration, what fits where, ...): for a tool that reads a case before
+// it sets the keys those checks depend on (`grainflow calibrate` chooses contact.k1).
+CaseConfig load_case_unvalidated(const std::string& path, const std::vector<std::string>& overrides = {});
+
 }  // namespace grainflow
