@@ -1,0 +1,43 @@
+"""The figures of `grainflow plot DIR` (tools/plot_run.py), after the appendix of Lan (1994).
+
+One module per family of figures; each has plot(outdir, info) -> [paths of the PNGs written] and
+draws only from the inputs that exist in the folder:
+
+  profiles     profiles.png, mass_below.png               (Figs. A4.1-A4.4, A4.7, A4.9, A4.15, A4.18-19)
+  timeseries   timeseries.png                             (approach to the steady state)
+
+A malformed input stops only the figures drawn from it (one plotter): the others are still drawn,
+and plot_folder returns the problems, each naming its file.
+"""
+
+import os
+
+from . import profiles, timeseries
+from .common import PlotError, RunInfo, existing, read_json
+
+PLOTTERS = [profiles.plot, timeseries.plot]
+
+# What makes a folder plottable at all (for the message when nothing is there).
+INPUTS = ["profiles.csv", "timeseries.csv"]
+
+
+def plot_folder(outdir):
+    """Draws every figure whose inputs exist in `outdir`. Returns (PNG paths written, problems)."""
+    if not os.path.isdir(outdir):
+        raise PlotError(f"{outdir}: no such folder")
+    problems = []
+    summary = {}
+    summary_path = existing(outdir, "summary.json")
+    if summary_path:
+        try:
+            summary = read_json(summary_path)
+        except PlotError as error:
+            problems.append(str(error))
+    info = RunInfo(outdir, summary)
+    written = []
+    for plotter in PLOTTERS:
+        try:
+            written += plotter(outdir, info)
+        except PlotError as error:
+            problems.append(str(error))
+    return written, problems
