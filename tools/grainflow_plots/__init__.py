@@ -5,6 +5,8 @@ draws only from the inputs that exist in the folder:
 
   profiles     profiles.png, mass_below.png               (Figs. A4.1-A4.4, A4.7, A4.9, A4.15, A4.18-19)
   timeseries   timeseries.png                             (approach to the steady state)
+  diffusion    vacf.png, msd.png                          (Figs. A4.16-A4.22, A4.25-A4.27)
+  zone_waves   zone_spectra.png, floor_correlation.png    (Figs. A4.13, A4.14)
 
 A malformed input stops only the figures drawn from it (one plotter): the others are still drawn,
 and plot_folder returns the problems, each naming its file.
@@ -12,13 +14,14 @@ and plot_folder returns the problems, each naming its file.
 
 import os
 
-from . import profiles, timeseries
+from . import diffusion, profiles, timeseries, zone_waves
 from .common import PlotError, RunInfo, existing, read_json
 
-PLOTTERS = [profiles.plot, timeseries.plot]
+PLOTTERS = [profiles.plot, timeseries.plot, diffusion.plot, zone_waves.plot]
 
 # What makes a folder plottable at all (for the message when nothing is there).
-INPUTS = ["profiles.csv", "timeseries.csv"]
+INPUTS = ["profiles.csv", "timeseries.csv", "analysis/vacf.csv", "analysis/msd.csv",
+          "analysis/zone_spectra.csv", "analysis/floor_correlation.csv"]
 
 
 def plot_folder(outdir):
