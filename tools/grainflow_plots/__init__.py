@@ -1,12 +1,17 @@
 """The figures of `grainflow plot DIR` (tools/plot_run.py), after the appendix of Lan (1994).
 
-One module per family of figures; each has plot(outdir, info) -> [paths of the PNGs written] and
-draws only from the inputs that exist in the folder:
+One module per family of figures; each has plot(outdir, info) -> [paths of the PNGs written]
+(convection: plot_mean and plot_phase_bins, for its two inputs) and draws only from the inputs that
+exist in the folder:
 
   profiles     profiles.png, mass_below.png               (Figs. A4.1-A4.4, A4.7, A4.9, A4.15, A4.18-19)
   timeseries   timeseries.png                             (approach to the steady state)
   diffusion    vacf.png, msd.png                          (Figs. A4.16-A4.22, A4.25-A4.27)
   zone_waves   zone_spectra.png, floor_correlation.png    (Figs. A4.13, A4.14)
+  convection   convection.png, convection_columns.png    (Figs. A5.1-A5.9)
+               convection_phases.png                      (Fig. A5.11)
+  tracers      tracer_height.png, tracer_spectrum.png, tracer_coordination.png  (Figs. A5.12-A5.17)
+  snapshots    snapshots_phases.png                       (Figs. A4.10, A5.10)
 
 A malformed input stops only the figures drawn from it (one plotter): the others are still drawn,
 and plot_folder returns the problems, each naming its file.
@@ -14,14 +19,16 @@ and plot_folder returns the problems, each naming its file.
 
 import os
 
-from . import diffusion, profiles, timeseries, zone_waves
+from . import convection, diffusion, profiles, snapshots, timeseries, tracers, zone_waves
 from .common import PlotError, RunInfo, existing, read_json
 
-PLOTTERS = [profiles.plot, timeseries.plot, diffusion.plot, zone_waves.plot]
+PLOTTERS = [profiles.plot, timeseries.plot, diffusion.plot, zone_waves.plot, convection.plot_mean,
+            convection.plot_phase_bins, tracers.plot, snapshots.plot]
 
 # What makes a folder plottable at all (for the message when nothing is there).
 INPUTS = ["profiles.csv", "timeseries.csv", "analysis/vacf.csv", "analysis/msd.csv",
-          "analysis/zone_spectra.csv", "analysis/floor_correlation.csv"]
+          "analysis/zone_spectra.csv", "analysis/floor_correlation.csv", "convection.csv",
+          "convection_phases.csv", "tracers.csv", "snapshots/"]
 
 
 def plot_folder(outdir):
