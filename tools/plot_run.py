@@ -1,14 +1,18 @@
 #!/usr/bin/python3
-"""PNG figures of a grainflow run folder, after the appendix of Lan (1994).
+"""PNG figures of a grainflow run folder or sweep folder, after the appendix of Lan (1994).
 
 Usage: /usr/bin/python3 tools/plot_run.py DIR     (what `grainflow plot DIR` runs)
 
 Draws every figure whose inputs exist in DIR and skips the others without a word: depth profiles
-and mass below a depth (profiles.csv), time series (timeseries.csv).
+and mass below a depth (profiles.csv), time series (timeseries.csv), velocity autocorrelation and
+mean-square displacement (analysis/vacf.csv, msd.csv), zone spectra and floor correlations
+(analysis/zone_spectra.csv, floor_correlation.csv), convection fields (convection.csv,
+convection_phases.csv), tracer histories (tracers.csv), projected snapshots at eight floor phases
+(snapshots/), and for a sweep folder (sweep.csv) the runs' results against Gamma or the varied key.
 docs/OUTPUTS.md lists each PNG with its Lan figure; the modules are in tools/grainflow_plots/.
 
 Each PNG is written under a temporary name in DIR and renamed into place. Needs Debian's
-python3-matplotlib and python3-numpy.
+python3-matplotlib and python3-numpy (python3-h5py for the zone histories and correlation curves).
 Exit status 1 when DIR is missing, holds nothing to plot, or an input is malformed (the message
 names the file; the figures of the other inputs are still written).
 """
@@ -23,7 +27,7 @@ from grainflow_plots.common import PlotError  # noqa: E402
 
 def main(argv):
     if len(argv) != 2 or argv[1] in ("-h", "--help"):
-        print("usage: plot_run.py DIR   (the output folder of `grainflow run`)", file=sys.stderr)
+        print("usage: plot_run.py DIR   (the output folder of `grainflow run` or `grainflow sweep`)", file=sys.stderr)
         return 1
     outdir = argv[1]
     written, problems = plot_folder(outdir)

@@ -12,6 +12,7 @@ exist in the folder:
                convection_phases.png                      (Fig. A5.11)
   tracers      tracer_height.png, tracer_spectrum.png, tracer_coordination.png  (Figs. A5.12-A5.17)
   snapshots    snapshots_phases.png                       (Figs. A4.10, A5.10)
+  sweep        sweep_*.png of a `grainflow sweep` folder  (Figs. A4.4-A4.9, A4.11, A4.12, A4.23, A4.24)
 
 A malformed input stops only the figures drawn from it (one plotter): the others are still drawn,
 and plot_folder returns the problems, each naming its file.
@@ -19,16 +20,16 @@ and plot_folder returns the problems, each naming its file.
 
 import os
 
-from . import convection, diffusion, profiles, snapshots, timeseries, tracers, zone_waves
+from . import convection, diffusion, profiles, snapshots, sweep, timeseries, tracers, zone_waves
 from .common import PlotError, RunInfo, existing, read_json
 
 PLOTTERS = [profiles.plot, timeseries.plot, diffusion.plot, zone_waves.plot, convection.plot_mean,
-            convection.plot_phase_bins, tracers.plot, snapshots.plot]
+            convection.plot_phase_bins, tracers.plot, snapshots.plot, sweep.plot]
 
 # What makes a folder plottable at all (for the message when nothing is there).
 INPUTS = ["profiles.csv", "timeseries.csv", "analysis/vacf.csv", "analysis/msd.csv",
           "analysis/zone_spectra.csv", "analysis/floor_correlation.csv", "convection.csv",
-          "convection_phases.csv", "tracers.csv", "snapshots/"]
+          "convection_phases.csv", "tracers.csv", "snapshots/", "sweep.csv"]
 
 
 def plot_folder(outdir):
