@@ -22,7 +22,7 @@ debug: deps
 demo: release
 	$(GRAINFLOW) run cases/demo/vibrated_bed.toml -o runs/demo
 	$(GRAINFLOW) plot runs/demo
-	@echo "demo: figures in runs/demo/ (profiles.png, timeseries.png)"
+	@echo "demo: figures in runs/demo/ (profiles.png, mass_below.png, timeseries.png, snapshots_phases.png)"
 
 # Release build: every test. Debug build (AddressSanitizer + UBSan): the unit tests.
 test: release debug

@@ -277,6 +277,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
         summary.integer("profile_samples", profile.samples());
         // Lan's dimensionless groups (eqs. 4-1-2, 4-1-3) and Gamma, so sweeps can plot against them.
+        summary.integer("gravity_axis", axis);
         summary.number("mass_holdup", derived.mass_holdup);
         summary.number("boundary_fluctuation_velocity", derived.boundary_fluctuation_velocity);
         summary.number("shaking_acceleration", derived.shaking_acceleration);

@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
   check->add_option("case", case_path, "case file (TOML)")->required();
   check->add_option("--set", overrides, "override a case key")->type_name("KEY=VALUE");
 
-  auto* plot_cmd = app.add_subcommand("plot", "PNG figures of a finished run");
+  auto* plot_cmd = app.add_subcommand("plot", "PNG figures of a run or sweep folder");
   plot_cmd->add_option("outdir", plot_dir, "output folder of a run")->required();
 
   app.add_subcommand("cases", "list the bundled cases");
