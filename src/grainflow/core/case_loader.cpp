@@ -56,6 +56,17 @@ int face_index(TomlReader& reader, const std::string& key, const std::string& na
 
 // The sampling window keys shared by [trajectory] and [zone_series]: start (< 0 when absent: the
 // caller's default) and samples, at least `fewest`.
+// The `particles` key's array of particle ids ([trajectory], [tracers]).
+std::vector<std::uint32_t> read_particle_ids(TomlReader& r, const toml::array& list) {
+  std::vector<std::uint32_t> ids;
+  for (const auto& item : list) {
+    const auto value = item.value<std::int64_t>();
+    if (!value || *value < 0 || *value > 0xFFFFFFFFll) r.fail("particles", "ids must be non-negative integers");
+    ids.push_back(static_cast<std::uint32_t>(*value));
+  }
+  return ids;
+}
+
 void read_sampling(TomlReader& r, double& start, long long& samples, long long fewest) {
   start = r.number("start", -1.0);
   if (r.has("start") && start < 0.0) r.fail("start", "must not be negative");
@@ -385,11 +396,7 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
       if (const auto* word = ids->as_string()) {
         if (word->get() != "all") r.fail("particles", "must be \"all\" or an array of particle ids");
       } else if (const auto* list = ids->as_array()) {
-        for (const auto& item : *list) {
-          const auto value = item.value<std::int64_t>();
-          if (!value || *value < 0 || *value > 0xFFFFFFFFll) r.fail("particles", "ids must be non-negative integers");
-          t.particles.push_back(static_cast<std::uint32_t>(*value));
-        }
+        t.particles = read_particle_ids(r, *list);
         if (t.particles.empty()) r.fail("particles", "an empty list follows nobody (use \"all\")");
       } else {
         r.fail("particles", "must be \"all\" or an array of particle ids");
@@ -434,11 +441,7 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (const toml::node* ids = r.raw("particles")) {
       const auto* list = ids->as_array();
       if (!list) r.fail("particles", "must be an array of particle ids");
-      for (const auto& item : *list) {
-        const auto value = item.value<std::int64_t>();
-        if (!value || *value < 0 || *value > 0xFFFFFFFFll) r.fail("particles", "ids must be non-negative integers");
-        t.particles.push_back(static_cast<std::uint32_t>(*value));
-      }
+      t.particles = read_particle_ids(r, *list);
     }
     if (const toml::node* names = r.raw("species")) {
       const auto* list = names->as_array();
