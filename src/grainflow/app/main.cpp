@@ -1,4 +1,4 @@
-// The `grainflow` command line (INTERFACE.md): run, check, plot, analyze, sweep, calibrate, cases, --version.
+// The `grainflow` command line (INTERFACE.md): run, check, plot, analyze, sweep, calibrate, theory, cases, --version.
 #include <CLI/CLI.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +12,7 @@
 #include "grainflow/app/dem_run.hpp"
 #include "grainflow/app/edmd_run.hpp"
 #include "grainflow/app/sweep_command.hpp"
+#include "grainflow/app/theory_command.hpp"
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
@@ -127,6 +128,15 @@ int main(int argc, char** argv) {
       ->type_name("KEY=VALUE")->allow_extra_args(false);
   calibrate->add_option("--threads", calibrate_options.threads, "OpenMP threads (default 1)")->check(CLI::Range(1, 1024));
   calibrate->add_flag("--quiet", calibrate_options.quiet, "no progress line during the trials");
+  // grainflow theory: steady kinetic-theory profiles of a vibrated bed (app/theory_command.hpp).
+  app::TheoryOptions theory_options;
+  auto* theory = app.add_subcommand("theory", "kinetic-theory profiles of a vibrated bed for a case or a run's folder");
+  theory->add_option("input", theory_options.input, "case file (TOML), or a run's output folder")->required();
+  theory->add_option("-o,--output", theory_options.output,
+                     "CSV file (default: kinetic_theory.csv here; OUTDIR/analysis/kinetic_theory.csv for a run folder)");
+  theory->add_option("--set", theory_options.overrides, "override a case key")->type_name("KEY=VALUE")->allow_extra_args(false);
+  theory->add_option("--g0", theory_options.contact_value, "radial distribution at contact (default torquato)")
+      ->check(CLI::IsMember({"torquato", "carnahan_starling"}));
 
   try {
     app.parse(argc, argv);
@@ -139,6 +149,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("cases")) return list_cases();
     if (app.got_subcommand("plot")) return plot(plot_dir);
     if (app.got_subcommand("analyze")) return app::analyze_run(analyze_dir, analyze_options);
+    if (app.got_subcommand("theory")) return app::run_theory(theory_options);
     if (app.got_subcommand("sweep")) return app::run_sweep(sweep_options, std::vector<std::string>(argv, argv + argc));
     if (app.got_subcommand("calibrate")) {
       if (*duration_option) calibrate_options.duration = calibrate_duration;
