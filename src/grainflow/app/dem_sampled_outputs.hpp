@@ -121,11 +121,11 @@ struct TracerOutput {
     ++next;
     const FloorMotion floor = floor_motion(st, c);
     const auto& p = st.particles;
+    const auto touch = e.coordination();
     for (std::size_t i = 0; i < p.size(); ++i)  // particles are re-sorted: find them by id
-      if (std::binary_search(ids.begin(), ids.end(), p.id[i])) {
-        const auto touch = e.coordination(i);
-        rows.push_back(row(st.time, p.id[i], e.unwrapped_position(i), p.velocity[i], touch.particles, touch.walls, floor));
-      }
+      if (std::binary_search(ids.begin(), ids.end(), p.id[i]))
+        rows.push_back(
+            row(st.time, p.id[i], e.unwrapped_position(i), p.velocity[i], touch[i].particles, touch[i].walls, floor));
   }
   void write(const std::string& path) const;
 

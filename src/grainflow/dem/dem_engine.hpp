@@ -94,17 +94,21 @@ class DemEngine {
     wall_forces(history_dt);
   }
 
-  // Particles and walls particle i touches now (its coordination number, Lan 1994 Fig. A5.17).
-  // Scans the whole pair list: meant for a few tracers at output times, not for every particle.
+  // Particles and walls each particle touches now (coordination numbers, Lan 1994 Fig. A5.17), by
+  // index: one pass over the pair list, however many particles are asked about.
   struct Coordination {
     int particles = 0, walls = 0;
   };
-  Coordination coordination(std::size_t i) const {
-    Coordination c;
+  std::vector<Coordination> coordination() const {
+    std::vector<Coordination> c(s_.particles.size());
     for (std::size_t a = 0; a + 1 < pairs_.offsets.size(); ++a)
       for (std::uint32_t k = pairs_.offsets[a]; k < pairs_.offsets[a + 1]; ++k)
-        if (contacts_.pair_touching[k] && (a == i || pairs_.partner[k] == i)) ++c.particles;
-    for (const auto& touching : contacts_.wall_touching) c.walls += touching[i] != 0;
+        if (contacts_.pair_touching[k]) {
+          ++c[a].particles;
+          ++c[pairs_.partner[k]].particles;
+        }
+    for (const auto& touching : contacts_.wall_touching)
+      for (std::size_t i = 0; i < c.size(); ++i) c[i].walls += touching[i] != 0;
     return c;
   }
 
