@@ -8,15 +8,6 @@
 
 namespace grainflow::observe {
 
-double sphere_slab_volume(double r, double c, double a, double b) {
-  // Antiderivative of the disc area pi (r^2 - h^2) along the axis, h measured from the centre.
-  auto F = [r](double h) {
-    h = std::clamp(h, -r, r);
-    return M_PI * (r * r * h - h * h * h / 3.0);
-  };
-  return F(b - c) - F(a - c);
-}
-
 ZoneProfile::ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area)
     : axis_(axis), lo_(lo), hi_(hi), thickness_(thickness) {
   const int zones = std::max(1, static_cast<int>(std::ceil((hi - lo) / thickness - 1e-9)));

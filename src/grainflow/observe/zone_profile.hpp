@@ -11,12 +11,10 @@
 #include <array>
 #include <vector>
 
+#include "grainflow/observe/partial_volume.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::observe {
-
-// Volume of a sphere of radius r centred at c lying between planes a < b.
-double sphere_slab_volume(double r, double c, double a, double b);
 
 struct ZoneAverages {
   double lo = 0.0, hi = 0.0;            // m, zone bounds along the gravity axis
