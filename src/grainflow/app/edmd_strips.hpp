@@ -1,0 +1,57 @@
+// Where an event-driven run's strips lie (Campbell 1982, Fig. 2.11): across the flow (along y,
+// normal to the walls; the flow runs along x), `output.zone_thickness` thick (default one diameter
+// of the first species). Between the two walls of a Couette cell: the count is fixed at the start
+// from the gap and the strips stretch with the servo's walls. Over a chute bottom: from the ylo wall
+// (or the domain's bottom) up to the domain's top, fixed.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "grainflow/core/case_config.hpp"
+#include "grainflow/edmd/edmd_state.hpp"
+#include "grainflow/observe/strip_grid.hpp"
+
+namespace grainflow::app {
+
+class EdmdStrips {
+ public:
+  static constexpr int kAxis = 1;  // y: the velocity gradient (flow along x)
+
+  EdmdStrips(const CaseConfig& c, const edmd::EdmdState& s) : dimension_(s.dimension) {
+    for (std::size_t w = 0; w < s.walls.size(); ++w) {
+      if (s.walls[w].face == 2) bottom_ = static_cast<int>(w);
+      if (s.walls[w].face == 3) top_ = static_cast<int>(w);
+    }
+    const double thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : c.species.front().diameter;
+    const auto [lo, hi] = bounds(s, s.time);
+    const double extent = top_ >= 0 ? hi - lo : c.domain.hi[kAxis] - lo;
+    count_ = std::max(1, static_cast<int>(std::lround(extent / thickness)));
+    if (top_ < 0) top_height_ = lo + count_ * thickness;
+  }
+
+  // The strips at time t (a Couette cell's walls and periodic width as they are then).
+  observe::StripGrid grid_at(const edmd::EdmdState& s, double t) const {
+    const auto [lo, hi] = bounds(s, t);
+    double cross_section = s.box.length(0);
+    if (dimension_ == 3) cross_section *= s.box.length(2);
+    return observe::StripGrid(dimension_, kAxis, lo, hi, count_, cross_section);
+  }
+
+  bool between_walls() const { return top_ >= 0; }
+  int count() const { return count_; }
+
+ private:
+  std::pair<double, double> bounds(const edmd::EdmdState& s, double t) const {
+    const double lo = bottom_ >= 0 ? s.walls[bottom_].at(t) : s.box.lo[kAxis];
+    const double hi = top_ >= 0 ? s.walls[top_].at(t) : top_height_;
+    return {lo, hi};
+  }
+
+  int dimension_;
+  int bottom_ = -1, top_ = -1;  // wall indices at ylo and yhi, -1 when none
+  int count_ = 1;
+  double top_height_ = 0.0;     // m, the top of the strips without a top wall
+};
+
+}  // namespace grainflow::app
