@@ -37,8 +37,8 @@ def case_quantities(path):
     return d, rho, g, species["count"] * math.pi * d**3 / 6.0 / (area * d)
 
 
-def check_profile(path, label):
-    """The CSV's layout and its balances against the demo case."""
+def check_profile(path, label, count_scale=1.0):
+    """The CSV's layout and its balances against the demo case (its particle count times count_scale)."""
     if not check(os.path.exists(path), f"{label}: {path} was not written"):
         return
     with open(path) as f:
@@ -54,6 +54,7 @@ def check_profile(path, label):
         return
     col = {k: [float(r[k]) for r in rows] for k in HEADER.split(",")}
     d, rho, g, mt = case_quantities(DEMO)
+    mt *= count_scale
     y, nu = col["Y"], col["solids_fraction"]
     check(y[0] == 0.0 and all(b > a for a, b in zip(y, y[1:])), f"{label}: Y does not rise from 0")
     # Trapezoid rule: the solver spaces points at most 0.02 max(1, theta) apart, so the rule errs by
@@ -100,6 +101,18 @@ def main():
         status, _, err = run(exe, "theory", rundir)
         if check(status == 0, f"theory on a run folder exited {status}: {err.strip()}"):
             check_profile(os.path.join(rundir, "analysis", "kinetic_theory.csv"), "run folder")
+
+        # A sweep's run folder: summary.json also records the run's --set assignments, one per
+        # line, and the theory applies them (here 1.5 times the demo's particles: 1.5 times its m_t).
+        with open(DEMO, "rb") as f:
+            count = tomllib.load(f)["species"][0]["count"]
+        pointdir = os.path.join(tmp, "sweep_point")
+        os.makedirs(pointdir)
+        write_text(os.path.join(pointdir, "summary.json"),
+                   json.dumps({"engine": "dem", "case": DEMO, "case_overrides": f"run.duration=1\nspecies.0.count={3 * count // 2}"}))
+        status, _, err = run(exe, "theory", pointdir)
+        if check(status == 0, f"theory on a sweep point exited {status}: {err.strip()}"):
+            check_profile(os.path.join(pointdir, "analysis", "kinetic_theory.csv"), "sweep point", (3 * count // 2) / count)
 
         # Bad input: exit 2, the message names the file (and key) and the reason; nothing written.
         missing = os.path.join(tmp, "no_such_case.toml")

@@ -263,6 +263,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         summary.integer("particles", moving);
         summary.integer("fixed_particles", static_cast<long long>(st.particles.size()) - moving);
         summary.string("case", c.path);
+        summary.string("case_overrides", join_overrides(c.overrides));
         summary.string("version", kVersion);
         summary.string("contact_model", c.contact.model);
         summary.number("simulated_time", st.time);

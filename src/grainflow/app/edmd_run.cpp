@@ -178,6 +178,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
         summary.integer("dimension", dim);
         summary.integer("particles", static_cast<long long>(n));
         summary.string("case", c.path);
+        summary.string("case_overrides", join_overrides(c.overrides));
         summary.string("version", kVersion);
         summary.number("simulated_time", st.time);
         summary.number("wall_seconds", wall_seconds);

@@ -1,5 +1,6 @@
 #include "grainflow/app/run_support.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 
@@ -46,6 +47,23 @@ void write_final_state(const std::string& path, const ParticleStore& p, const st
           << '\n';
     }
   });
+}
+
+std::string join_overrides(const std::vector<std::string>& overrides) {
+  std::string joined;
+  for (const auto& assignment : overrides) joined += (joined.empty() ? "" : "\n") + assignment;
+  return joined;
+}
+
+std::vector<std::string> split_overrides(const std::string& joined) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start < joined.size()) {
+    const std::size_t end = std::min(joined.find('\n', start), joined.size());
+    if (end > start) out.push_back(joined.substr(start, end - start));
+    start = end + 1;
+  }
+  return out;
 }
 
 }  // namespace grainflow::app

@@ -51,6 +51,11 @@ class Progress {
   clock::time_point start_, last_;
 };
 
+// A run's --set assignments for summary.json's "case_overrides": one per line, so that a run
+// folder (e.g. one point of a sweep) names its exact case; split_overrides reads them back.
+std::string join_overrides(const std::vector<std::string>& overrides);
+std::vector<std::string> split_overrides(const std::string& joined);
+
 // Adds errors and warnings to summary.json, writes it atomically into `dir`, and repeats the
 // errors on stderr (unless `echo_errors` is false); returns `exit_status`.
 int finish_summary(io::JsonObject& summary, const std::string& dir, const std::vector<std::string>& errors,

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "grainflow/app/run_support.hpp"
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
@@ -105,8 +106,13 @@ TheoryInputs theory_inputs(const CaseConfig& c) {
 
 namespace {
 
-// The case named by a run folder's summary.json.
-std::string case_of_run(const fs::path& dir) {
+struct RunCase {
+  std::string path;
+  std::vector<std::string> overrides;  // the run's own --set assignments (a sweep's point)
+};
+
+// The case named by a run folder's summary.json, with the assignments the run applied to it.
+RunCase case_of_run(const fs::path& dir) {
   const fs::path summary = dir / "summary.json";
   if (!fs::exists(summary))
     throw InputError(dir.string(), "", "not a run's output folder: it has no summary.json (give a case file or a run's folder)");
@@ -120,6 +126,9 @@ std::string case_of_run(const fs::path& dir) {
   } catch (const io::JsonParseError& e) {
     throw InputError(summary.string(), "", e.what());
   }
+  RunCase run;
+  for (const auto& [key, value] : fields)
+    if (key == "case_overrides" && value.kind == io::FlatJsonValue::Kind::string) run.overrides = split_overrides(value.text);
   for (const auto& [key, value] : fields) {
     if (key != "case") continue;
     if (value.kind != io::FlatJsonValue::Kind::string || value.text.empty())
@@ -128,7 +137,8 @@ std::string case_of_run(const fs::path& dir) {
       throw InputError(summary.string(), "case",
                        "names '" + value.text + "', which does not exist here (the path is as given to grainflow run; "
                        "run grainflow theory from the same folder, or give the case file itself)");
-    return value.text;
+    run.path = value.text;
+    return run;
   }
   throw InputError(summary.string(), "case", "missing: the run's case file is not recorded");
 }
@@ -139,15 +149,19 @@ int run_theory(const TheoryOptions& options) {
   const fs::path input(options.input);
   std::string case_path = options.input;
   fs::path output = options.output;
+  std::vector<std::string> overrides = options.overrides;
   if (fs::is_directory(input)) {
-    case_path = case_of_run(input);
+    RunCase run = case_of_run(input);
+    case_path = run.path;
+    // The run's own assignments first, so that the command line's --set still wins.
+    overrides.insert(overrides.begin(), run.overrides.begin(), run.overrides.end());
     if (output.empty()) output = input / "analysis" / "kinetic_theory.csv";
   } else if (!fs::exists(input)) {
     throw InputError(options.input, "", "no such case file or run folder");
   }
   if (output.empty()) output = "kinetic_theory.csv";
 
-  const CaseConfig c = load_case(case_path, options.overrides);
+  const CaseConfig c = load_case(case_path, overrides);
   TheoryInputs in = theory_inputs(c);
   if (options.contact_value == "carnahan_starling")
     in.parameters.contact_value = analysis::ContactValueModel::carnahan_starling;

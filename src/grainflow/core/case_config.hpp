@@ -195,6 +195,7 @@ struct InitialParticle {
 
 struct CaseConfig {
   std::string path;  // the case file, as given
+  std::vector<std::string> overrides;  // --set KEY=VALUE assignments applied on top of the file, in order
   EngineConfig engine;
   DomainConfig domain;
   Vec3 gravity{0.0, -9.81, 0.0};

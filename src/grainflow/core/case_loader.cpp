@@ -495,6 +495,7 @@ CaseConfig load_from_table(toml::table& root, const std::string& label, const st
   std::set<std::string> overridden;
   for (const auto& assignment : overrides) overridden.insert(apply_override(root, assignment, label));
   CaseConfig c = parse(root, label, overridden);
+  c.overrides = overrides;
   if (c.particles.init == "file") read_initial_particles(c, base_dir);
   if (validate) validate_case(c);
   return c;
