@@ -1,5 +1,6 @@
 #include "grainflow/app/edmd_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 #include <variant>
 
+#include "grainflow/app/edmd_collision_outputs.hpp"
 #include "grainflow/app/run_support.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
@@ -96,23 +98,33 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
     rows.push_back(row);
   };
 
+  // Stresses, wall loads and collision angles from the collisions, sampled every profile_interval.
+  std::optional<EdmdCollisionOutputs> collision_outputs;
+  const double sample_interval = c.output.profile_interval > 0.0 ? c.output.profile_interval : c.output.interval / 10.0;
+
   const double end_time = c.run.duration;
   try {
     std::visit(
         [&](auto& e) {
           record(e);
           if (snapshots) snapshots->add(e.state().particles, e.state().time);
-          // Rows and snapshots each on their own exact grid k * interval: advance to whichever is next.
-          long row = 1, shot = 1;
+          if (c.output.collision_stresses) collision_outputs.emplace(c, e.state());
+          // Rows, snapshots and samples each on their own exact grid k * interval: advance to whichever is next.
+          long row = 1, shot = 1, sample = 1;
           try {
             while (true) {
               const double next_row = std::min(end_time, row * c.output.interval);
               const double next_shot = snapshots ? shot * c.output.snapshot_interval : kNeverTime;
-              const double t = std::min(next_row, next_shot);
+              const double next_sample = collision_outputs ? sample * sample_interval : kNeverTime;
+              const double t = std::min({next_row, next_shot, next_sample});
               e.advance_to(t);
               if (snapshots && next_shot <= t) {
                 snapshots->add(e.state().particles, e.state().time);
                 ++shot;
+              }
+              if (collision_outputs && next_sample <= t) {
+                collision_outputs->sample(e);
+                ++sample;
               }
               if (next_row > t) continue;
               ++row;
@@ -202,6 +214,10 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
           summary.integer("servo_updates", k.servo_updates);
           summary.number("wall_gap", e.servo().gap);
           summary.number("cell_width", e.servo().width);
+        }
+        if (collision_outputs) {
+          collision_outputs->finish(e);
+          collision_outputs->write(dir, summary, warnings);
         }
         exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
       },

@@ -27,7 +27,8 @@ class EdmdStrips {
     const auto [lo, hi] = bounds(s, s.time);
     const double extent = top_ >= 0 ? hi - lo : c.domain.hi[kAxis] - lo;
     count_ = std::max(1, static_cast<int>(std::lround(extent / thickness)));
-    if (top_ < 0) top_height_ = lo + count_ * thickness;
+    // Periodic along y (Lees-Edwards): the strips span the box exactly, so each end meets the other.
+    if (top_ < 0) top_height_ = s.box.periodic[kAxis] ? s.box.hi[kAxis] : lo + count_ * thickness;
   }
 
   // The strips at time t (a Couette cell's walls and periodic width as they are then).

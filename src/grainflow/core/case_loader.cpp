@@ -373,6 +373,9 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (o.average_start_collisions < 0) r.fail("average_start_collisions", "must not be negative");
     if (o.average_start_collisions > 0 && c.engine.kind != "edmd")
       r.fail("average_start_collisions", "only the event-driven engine counts collisions (use average_start)");
+    o.collision_stresses = r.boolean("collision_stresses", true);
+    if (r.has("collision_stresses") && c.engine.kind != "edmd")
+      r.fail("collision_stresses", "only the event-driven engine measures stresses from its collisions");
     o.zone_thickness = r.number("zone_thickness", 0.0);
     if (o.zone_thickness < 0.0) r.fail("zone_thickness", "must not be negative");
     o.bed_gap_fraction = r.number("bed_gap_fraction", o.bed_gap_fraction);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "grainflow/core/error.hpp"
+#include "grainflow/edmd/collision_observer.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 #include "grainflow/edmd/event_queue.hpp"
 #include "grainflow/edmd/free_flight.hpp"
@@ -75,6 +76,23 @@ class EdmdEngine {
   const EdmdState& state() const { return s_; }
   EventCounters& counters() { return counters_; }
   const ServoState& servo() const { return servo_state_; }
+
+  // Reports every later collision to `observer` (nullptr: none). The engine does not own it.
+  void set_observer(CollisionObserver* observer) { observer_ = observer; }
+
+  // Calls visit(i, wall, force) for each particle rolling on a wall now (section 2.14.2), with the
+  // force the wall exerts on it, m (a - g): the normal part of its weight and, on rough and no-slip
+  // walls, the friction that makes it roll (2D: masses per unit depth, as everywhere). It presses on
+  // the wall continuously, between collisions, so an observer adds it at its sample times. O(N)
+  // while any particle rolls, nothing while none does. Particles must be current (after advance_to).
+  template <class Visit>
+  void for_each_rolling(Visit&& visit) const {
+    if (rolling_count_ == 0) return;
+    for (std::size_t i = 0; i < rolling_.size(); ++i)
+      if (rolling_[i] >= 0)
+        visit(static_cast<std::uint32_t>(i), rolling_[i],
+              s_.particles.mass[i] * (acceleration(static_cast<std::uint32_t>(i)) - s_.gravity));
+  }
 
   // Processes every event up to time `t_end`, then brings all particles to `t_end`.
   void advance_to(double t_end) {
@@ -570,10 +588,34 @@ class EdmdEngine {
     flight_[j].v -= frame;
     last_collision_[i] = last_collision_[j] = s_.time;
     counters_.virial += dot(dr, impulse);
-    counters_.dissipated += before - kinetic_energy(i) - kinetic_energy(j);
+    const double lost = before - kinetic_energy(i) - kinetic_energy(j);
+    counters_.dissipated += lost;
     ++flight_[i].count;
     ++flight_[j].count;
     ++counters_.collisions;
+    if (observer_ != nullptr) [[unlikely]] report_pair(i, j, impulse, lost);
+  }
+
+  // Out of line, so that collide() stays as lean as without an observer: what the collision left
+  // unchanged (positions, hence separation, normal and image frame) is recomputed here, and the
+  // velocities before are recovered from those after (v_i' = v_i + J/m_i, v_j' = v_j - J/m_j).
+  [[gnu::noinline, gnu::cold]] void report_pair(std::uint32_t i, std::uint32_t j, const Vec3& impulse, double lost) {
+    const ParticleStore& p = s_.particles;
+    const Vec3 dr = displacement(i, j);
+    const Vec3 normal = dr * (1.0 / norm(dr));
+    const Vec3 frame = image_velocity(i, j);
+    PairCollision c;
+    c.time = s_.time;
+    c.i = i;
+    c.j = j;
+    c.xi = flight_[i].x;
+    c.xj = flight_[i].x - dr;
+    c.contact = c.xi - p.radius[i] * normal;
+    c.normal = normal;
+    c.impulse = impulse;
+    c.relative_velocity_before = flight_[i].v - (flight_[j].v + frame) - (p.inv_mass[i] + p.inv_mass[j]) * impulse;
+    c.dissipated = lost;
+    observer_->on_pair(c);
   }
 
   void collide_with_wall(std::uint32_t i, int w) {
@@ -583,15 +625,39 @@ class EdmdEngine {
     normal[wall.axis] = wall.inward;
     const double before = kinetic_energy(i);
     const bool recent = s_.time - last_collision_[i] < s_.contact_duration;
+    const WallCondition condition = recent ? WallCondition::smooth : wall.condition;
     const Vec3 impulse = collide_wall({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
-                                      normal, wall.velocity, recent ? elastic_ : wall.restitution,
-                                      recent ? WallCondition::smooth : wall.condition);
+                                      normal, wall.velocity, recent ? elastic_ : wall.restitution, condition);
     wall_normal_impulse_[w] += dot(impulse, normal);
     last_collision_[i] = s_.time;
-    counters_.dissipated += before - kinetic_energy(i);
+    const double lost = before - kinetic_energy(i);
+    counters_.dissipated += lost;
     ++flight_[i].count;
     ++counters_.wall_collisions;
+    if (observer_ != nullptr) [[unlikely]] report_wall(i, w, normal, impulse, condition, lost);
     start_rolling_if_slow(i, w);
+  }
+
+  // The state before is recovered from that after: v' = v + J/m, and on a rough wall
+  // omega' = omega - (R/I) n x J (collide_wall); smooth and no-slip collisions leave the spin.
+  [[gnu::noinline, gnu::cold]] void report_wall(std::uint32_t i, int w, const Vec3& normal, const Vec3& impulse,
+                                                WallCondition condition, double lost) {
+    const EdmdWall& wall = s_.walls[w];
+    const ParticleStore& p = s_.particles;
+    Vec3 spin = p.angular_velocity[i];
+    if (condition == WallCondition::rough) spin += (p.radius[i] * p.inv_inertia[i]) * cross(normal, impulse);
+    const Vec3 relative = flight_[i].v - p.inv_mass[i] * impulse - wall.velocity;
+    WallCollision c;
+    c.time = s_.time;
+    c.i = i;
+    c.wall = w;
+    c.x = flight_[i].x;
+    c.contact = c.x;
+    c.contact[wall.axis] = wall.at(s_.time);
+    c.impulse = impulse;
+    c.slip_velocity_before = relative - dot(relative, normal) * normal - p.radius[i] * cross(spin, normal);
+    c.dissipated = lost;
+    observer_->on_wall(c);
   }
 
   // Too slow to bounce (section 2.14.2): the particle rolls along the wall until its next particle
@@ -673,6 +739,7 @@ class EdmdEngine {
   std::vector<double> event_time_;
   EventQueue queue_;
   EventCounters counters_;
+  CollisionObserver* observer_ = nullptr;
 };
 
 }  // namespace grainflow::edmd
