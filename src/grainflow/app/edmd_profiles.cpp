@@ -32,8 +32,8 @@ struct EdmdProfiles::Derived {
   double depth = kNaN, mass_flow = kNaN, mass_per_width = kNaN, mean_velocity = kNaN, max_velocity = kNaN;
   double froude = kNaN, froude_normal = kNaN, critical_froude = kNaN, angle = kNaN;
   analysis::ProfileParameters shape{kNaN, kNaN, kNaN, kNaN};
-  // Couette: gap H and wall speeds along x, means over the samples.
-  double gap = kNaN, bottom_speed = kNaN, top_speed = kNaN, speed = kNaN;
+  // Couette: gap H and U_T, the top wall's x speed relative to the bottom's, means over the samples.
+  double gap = kNaN, speed = kNaN;
   double slip = kNaN, slip_top = kNaN;  // m/s, the strip nearest the wall relative to the wall
 };
 
@@ -71,24 +71,23 @@ void EdmdProfiles::sample(const edmd::EdmdState& s, long long collisions) {
   if (top_wall_ >= 0) sum_top_speed_ += s.walls[top_wall_].velocity.x;
 }
 
-EdmdProfiles::Derived EdmdProfiles::derive(const std::vector<observe::StripAverages>& strips) const {
+// Per strip: du/dy from the local quadratic fit, S in both forms, the plug-flow flag.
+void EdmdProfiles::derive_strips(const std::vector<observe::StripAverages>& strips, Derived& d) const {
   using namespace observe::strip;
-  Derived d;
   const std::size_t n = strips.size();
-  const double samples = static_cast<double>(profile_.samples());
   const double radius = 0.5 * c_.species.front().diameter;  // Campbell's R
-  std::vector<double> y(n), u(n), u_error(n);
+  std::vector<double> y(n), velocity(n), velocity_error(n);
   for (std::size_t k = 0; k < n; ++k) {
     y[k] = strips[k].centre;
-    u[k] = strips[k].value[observe::strip::u];
-    u_error[k] = strips[k].error[observe::strip::u];
+    velocity[k] = strips[k].value[u];
+    velocity_error[k] = strips[k].error[u];
   }
-  const auto fit = analysis::local_quadratic_fit(y, u, u_error);
+  const auto fit = analysis::local_quadratic_fit(y, velocity, velocity_error);
   // The profile's mean shear rate, the reference for the plug-flow flag.
   double u_lo = INFINITY, u_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
   for (std::size_t k = 0; k < n; ++k)
     if (strips[k].has_mass()) {
-      u_lo = std::min(u_lo, u[k]), u_hi = std::max(u_hi, u[k]);
+      u_lo = std::min(u_lo, velocity[k]), u_hi = std::max(u_hi, velocity[k]);
       y_lo = std::min(y_lo, y[k]), y_hi = std::max(y_hi, y[k]);
     }
   const double mean_shear = y_hi > y_lo ? (u_hi - u_lo) / (y_hi - y_lo) : kNaN;
@@ -102,48 +101,56 @@ EdmdProfiles::Derived EdmdProfiles::derive(const std::vector<observe::StripAvera
     const bool plug = x[solids_fraction] > shearable && std::fabs(fit[k].slope) < kPlugShearFraction * mean_shear;
     d.plug.push_back(plug ? 1.0 : 0.0);
   }
-  if (samples == 0.0) return d;
+}
 
-  if (strips_.between_walls()) {
-    d.gap = sum_gap_ / samples;
-    d.bottom_speed = sum_bottom_speed_ / samples;
-    d.top_speed = sum_top_speed_ / samples;
-    d.speed = d.top_speed - d.bottom_speed;
-    d.scaling = d.speed != 0.0 ? (d.gap / d.speed) * (d.gap / d.speed) : kNaN;
-    d.slip = u.front() - d.bottom_speed;
-    d.slip_top = d.top_speed - u.back();
+// Gap, U_T, (H/U_T)^2 and the slip at each wall.
+void EdmdProfiles::derive_couette(const std::vector<observe::StripAverages>& strips, Derived& d) const {
+  const double samples = static_cast<double>(profile_.samples());
+  d.gap = sum_gap_ / samples;
+  const double bottom_speed = sum_bottom_speed_ / samples, top_speed = sum_top_speed_ / samples;
+  d.speed = top_speed - bottom_speed;
+  d.scaling = d.speed != 0.0 ? (d.gap / d.speed) * (d.gap / d.speed) : kNaN;
+  d.slip = strips.front().value[observe::strip::u] - bottom_speed;
+  d.slip_top = top_speed - strips.back().value[observe::strip::u];
+}
+
+// Depth, mass flow, Froude numbers, Appendix A's profile parameters, slip at the bottom.
+void EdmdProfiles::derive_chute(const std::vector<observe::StripAverages>& strips, Derived& d) const {
+  using namespace observe::strip;
+  const double samples = static_cast<double>(profile_.samples());
+  const Vec3 g = c_.gravity;
+  const double g_magnitude = norm(g), g_normal = -g.y;
+  d.angle = std::atan2(std::fabs(g.x), g_normal) * 180.0 / M_PI;
+  d.depth = 2.0 * sum_height_ / samples;
+  double momentum = 0.0, mass = 0.0;
+  std::vector<analysis::ProfileStrip> column;
+  for (const auto& strip : strips) {
+    const auto& x = strip.value;
+    const double height = strip.centre - bottom_;  // of the strip's centre above the bottom
+    column.push_back({height - 0.5 * thickness_, height + 0.5 * thickness_, x[solids_fraction], x[u]});
+    mass += x[observe::strip::mass];
+    if (!strip.has_mass()) continue;
+    momentum += x[observe::strip::mass] * x[u];
+    if (height <= d.depth && !(x[u] <= d.max_velocity)) d.max_velocity = x[u];  // (NaN at first)
   }
-  if (chute_) {
-    const Vec3 g = c_.gravity;
-    const double g_magnitude = norm(g), g_normal = -g.y;
-    d.angle = std::atan2(std::fabs(g.x), g_normal) * 180.0 / M_PI;
-    d.depth = 2.0 * sum_height_ / samples;
-    double momentum = 0.0, mass = 0.0;
-    std::vector<analysis::ProfileStrip> column;
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto& x = strips[k].value;
-      mass += x[observe::strip::mass];
-      if (strips[k].has_mass()) momentum += x[observe::strip::mass] * x[observe::strip::u];
-      const double lo = y[k] - 0.5 * thickness_ - bottom_;
-      column.push_back({lo, lo + thickness_, x[solids_fraction], u[k]});
-      if (strips[k].has_mass() && y[k] - bottom_ <= d.depth) d.max_velocity = std::isfinite(d.max_velocity) ? std::max(d.max_velocity, u[k]) : u[k];
-    }
-    d.mass_flow = momentum / cross_section_;
-    d.mass_per_width = mass / cross_section_;
-    d.mean_velocity = mass > 0.0 ? momentum / mass : kNaN;
-    d.froude = d.mean_velocity / std::sqrt(g_magnitude * d.depth);
-    d.froude_normal = d.mean_velocity / std::sqrt(g_normal * d.depth);
-    d.shape = analysis::open_channel_profile_parameters(column, d.depth);
-    d.critical_froude = analysis::critical_froude_number(d.shape, g_normal / g_magnitude);
-    d.slip = u.front();
-  }
-  return d;
+  d.mass_flow = momentum / cross_section_;
+  d.mass_per_width = mass / cross_section_;
+  d.mean_velocity = mass > 0.0 ? momentum / mass : kNaN;
+  d.froude = d.mean_velocity / std::sqrt(g_magnitude * d.depth);
+  d.froude_normal = d.mean_velocity / std::sqrt(g_normal * d.depth);
+  d.shape = analysis::open_channel_profile_parameters(column, d.depth);
+  d.critical_froude = analysis::critical_froude_number(d.shape, g_normal / g_magnitude);
+  const double wall_speed = bottom_wall_ >= 0 ? sum_bottom_speed_ / samples : 0.0;
+  d.slip = strips.front().value[u] - wall_speed;
 }
 
 void EdmdProfiles::write(const std::string& dir, io::JsonObject& summary, std::vector<std::string>& warnings) const {
   using namespace observe::strip;
   const auto strips = profile_.averages();
-  const Derived d = derive(strips);
+  Derived d;
+  derive_strips(strips, d);
+  if (profile_.samples() > 0 && strips_.between_walls()) derive_couette(strips, d);
+  if (profile_.samples() > 0 && chute_) derive_chute(strips, d);
   const int dim = profile_.dimension();
   const bool couette = strips_.between_walls();
   const double radius = 0.5 * c_.species.front().diameter;

@@ -36,7 +36,9 @@ class EdmdProfiles {
 
  private:
   struct Derived;  // du/dy, S and plug flow per strip; chute and Couette scalars
-  Derived derive(const std::vector<observe::StripAverages>& strips) const;
+  void derive_strips(const std::vector<observe::StripAverages>& strips, Derived& d) const;
+  void derive_couette(const std::vector<observe::StripAverages>& strips, Derived& d) const;
+  void derive_chute(const std::vector<observe::StripAverages>& strips, Derived& d) const;
 
   const CaseConfig& c_;
   EdmdStrips strips_;
