@@ -291,6 +291,8 @@ BAD_CASES = [
      "collision.restitution_law", "campbell"),
     ("negative_elastic_speed", VALID.replace("elastic_speed = 1e-4", "elastic_speed = -1.0"),
      "collision.elastic_speed", "negative"),
+    ("strips_thinner_than_a_radius", VALID.replace("interval = 0.01", "interval = 0.01\nzone_thickness = 0.0005"),
+     "output.zone_thickness", "radius"),
 ]
 
 

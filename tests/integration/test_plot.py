@@ -6,7 +6,8 @@ simulation is needed:
   series with the new columns, VACF/MSD/diffusion, zone spectra and floor correlations, and
   zone_series.h5 when h5py is there, convection fields, tracers, a VTU snapshot series written in
   vtu_writer.cpp's format): exit 0 and every expected PNG, each a valid PNG, no temporary file left;
-- a folder with only an event-driven time series: exit 0, timeseries.png and nothing else;
+- a folder with only an event-driven time series and strip profiles: exit 0, timeseries.png and
+  nothing else (Campbell's strip profiles are not Lan's zone profiles);
 - an empty folder and a missing folder: exit 1 with a message;
 - a malformed convection.csv (a field that is not a number), a tracers.csv without a column and a
   truncated VTU: exit 1, the message names the file, and the other figures are still written;
@@ -323,6 +324,9 @@ def main():
                   ["time", "kinetic_energy", "rotational_energy", "granular_temperature", "collisions",
                    "wall_collisions", "events", "pressure", "dissipated"],
                   [[0.1 * k, 1.0, 0.0, 0.5, 100 * k, 10 * k, 300 * k, 2.0, 0.01 * k] for k in range(20)])
+        with open(os.path.join(sparse, "profiles.csv"), "w") as f:
+            f.write("# strip profiles (Campbell 1982 sections 3.1-3.2): 10 samples\n# units: y m\n"
+                    "strip,y,solids_fraction\n0,1,0.5\n1,3,0.4\n")
         status, out, err = plot(sparse)
         check(status == 0 and not err.strip(), f"time series only: exit {status}, stderr: {err.strip()}")
         check(pngs_in(sparse) == ["timeseries.png"], f"time series only: PNGs {pngs_in(sparse)}")

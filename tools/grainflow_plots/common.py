@@ -122,6 +122,16 @@ def existing(*parts):
     return path if os.path.isfile(path) else None
 
 
+def zone_profiles(outdir):
+    """profiles.csv of a DEM run (Lan's zone profiles), else None: an event-driven run's profiles.csv
+    holds Campbell's strip profiles (first line "# strip profiles"), which these figures do not draw."""
+    path = existing(outdir, "profiles.csv")
+    if path is None:
+        return None
+    with open(path) as f:
+        return None if f.readline().startswith("# strip profiles") else path
+
+
 # --- Output -------------------------------------------------------------------------------------
 
 
@@ -314,7 +324,7 @@ def case_name(summary, outdir):
 
 def profile_diameter(outdir):
     """d of Y = y/d, recovered from profiles.csv's own columns (None when it does not tell)."""
-    path = existing(outdir, "profiles.csv")
+    path = zone_profiles(outdir)
     if path is None:
         return None
     try:

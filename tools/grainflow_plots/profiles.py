@@ -12,7 +12,7 @@ import os
 import matplotlib.pyplot as plt
 import numpy as np
 
-from .common import error_bars, existing, read_table, save_atomically
+from .common import error_bars, existing, read_table, save_atomically, zone_profiles
 
 # W of a zone is drawn as a line only where the zone holds on average at least this many
 # particles: a particle alone in a zone has no fluctuation about the instantaneous zone mean, so
@@ -28,7 +28,7 @@ THEORY_STYLE = {"color": "k", "linestyle": "-", "linewidth": 1.2, "label": "kine
 
 
 def plot(outdir, info):
-    path = existing(outdir, "profiles.csv")
+    path = zone_profiles(outdir)
     if path is None:
         return []
     profiles = read_table(path, PROFILE_COLUMNS)

@@ -26,7 +26,7 @@ import numpy as np
 from matplotlib import cm, colors
 
 from .common import (AXES, PlotError, RunInfo, error_bars, existing, number, read_json, read_table,
-                     save_atomically)
+                     save_atomically, zone_profiles)
 from .profiles import dense_zones, draw_mass_below, finish_mass_below_axes, mass_below, occupied_zones
 
 # (summary field, y label, file, Lan figure)
@@ -174,7 +174,7 @@ def member_profiles(sweep):
     """[(label, colour, profile table)] of the runs that have profiles.csv."""
     found = []
     for row, label, colour in zip(sweep.rows, sweep.labels, run_colours(sweep)):
-        path = existing(sweep.folder(row), "profiles.csv")
+        path = zone_profiles(sweep.folder(row))
         if path:
             found.append((label, colour, read_table(path, PROFILE_COLUMNS)))
     return found

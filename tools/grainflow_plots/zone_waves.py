@@ -15,7 +15,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib import cm, colors
 
-from .common import PlotError, existing, h5py, read_table, save_atomically
+from .common import PlotError, existing, h5py, read_table, save_atomically, zone_profiles
 
 HISTORY_CYCLES = 4  # floor cycles of the time histories
 WATERFALL = 8       # zones drawn in the stack of correlation curves
@@ -141,7 +141,7 @@ def correlation(x, y, max_lag):
 
 def occupied_zone_mask(outdir, zones):
     """Zones holding material (solids fraction >= 1% of the peak in profiles.csv); all without it."""
-    path = existing(outdir, "profiles.csv")
+    path = zone_profiles(outdir)
     if path is None:
         return np.ones(zones.size, dtype=bool)
     try:

@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "grainflow/app/edmd_collision_outputs.hpp"
+#include "grainflow/app/edmd_profiles.hpp"
 #include "grainflow/app/run_support.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
@@ -41,6 +42,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   namespace fs = std::filesystem;
   const int dim = c.engine.dimension;
   edmd::EdmdState initial = edmd::build_edmd_state(c);
+  EdmdProfiles profiles(c, initial);
   EdmdVariant engine = dim == 2 ? EdmdVariant(std::in_place_index<0>, std::move(initial))
                                 : EdmdVariant(std::in_place_index<1>, std::move(initial));
   fs::create_directories(options.output_directory);
@@ -116,8 +118,9 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
               const double next_row = std::min(end_time, row * c.output.interval);
               const double next_shot = snapshots ? shot * c.output.snapshot_interval : kNeverTime;
               const double next_sample = collision_outputs ? sample * sample_interval : kNeverTime;
-              const double t = std::min({next_row, next_shot, next_sample});
+              const double t = std::min({next_row, next_shot, next_sample, profiles.next_time()});
               e.advance_to(t);
+              if (profiles.next_time() <= t) profiles.sample(e.state(), e.counters().collisions);
               if (snapshots && next_shot <= t) {
                 snapshots->add(e.state().particles, e.state().time);
                 ++shot;
@@ -219,6 +222,11 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
           collision_outputs->finish(e);
           collision_outputs->write(dir, summary, warnings);
         }
+        profiles.write(dir, summary, warnings);
+        std::vector<double> row_time, row_energy;
+        for (const auto& r : rows) row_time.push_back(r.time), row_energy.push_back(r.global.kinetic_energy);
+        const double began = std::isfinite(profiles.first_sample_time()) ? profiles.first_sample_time() : c.output.average_start;
+        report_steady_state(row_time, row_energy, began, summary, warnings);
         exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
       },
       engine);

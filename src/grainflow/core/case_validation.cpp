@@ -193,6 +193,9 @@ void validate_edmd(const CaseConfig& c) {
       fail(c, "domain.hi", std::string("periodic axis ") + "xyz"[axis] + " must be at least two diameters long");
   for (int f = 0; f < 6; ++f)
     if (c.domain.faces[f] == FaceKind::bumpy) fail(c, "domain.boundary", "bumpy walls are a DEM feature");
+  // Strips thinner than a radius would only split each particle into more pieces (as for dem).
+  if (c.output.zone_thickness > 0.0 && c.output.zone_thickness < 0.5 * max_diameter)
+    fail(c, "output.zone_thickness", "must be at least the radius of the largest particle");
   if (c.particles.initial_profile == "couette" && (c.domain.faces[2] != FaceKind::wall || c.domain.faces[3] != FaceKind::wall))
     fail(c, "particles.initial_profile", "the couette profile needs walls at ylo and yhi");
   if (c.particles.init != "file") {

@@ -2,9 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
-
-#include "grainflow/analysis/block_average.hpp"
 
 namespace grainflow::observe {
 
@@ -78,14 +75,13 @@ void ZoneProfile::fill_fluctuations(const ParticleStore& p) {
   }
 }
 
-void ZoneProfile::add(std::vector<Sums>& to, const std::vector<Sums>& from) {
-  for (std::size_t z = 0; z < to.size(); ++z) {
-    to[z].mass += from[z].mass;
-    to[z].solid_volume += from[z].solid_volume;
-    to[z].momentum += from[z].momentum;
-    to[z].second_moment += from[z].second_moment;
-    to[z].fluctuation_lan += from[z].fluctuation_lan;
-  }
+ZoneProfile::Sums& ZoneProfile::Sums::operator+=(const Sums& o) {
+  mass += o.mass;
+  solid_volume += o.solid_volume;
+  momentum += o.momentum;
+  second_moment += o.second_moment;
+  fluctuation_lan += o.fluctuation_lan;
+  return *this;
 }
 
 double ZoneProfile::instantaneous_temperature(const ParticleStore& p) {
@@ -102,22 +98,9 @@ double ZoneProfile::instantaneous_temperature(const ParticleStore& p) {
 void ZoneProfile::sample(const ParticleStore& p) {
   fill_masses(p);
   fill_fluctuations(p);
-  add(sums_, scratch_);
+  for (std::size_t z = 0; z < sums_.size(); ++z) sums_[z] += scratch_[z];
   ++samples_;
-  if (open_block_.empty()) open_block_.assign(sums_.size(), Sums{});
-  add(open_block_, scratch_);
-  if (++open_samples_ < block_length_) return;
-  blocks_.push_back(open_block_);
-  open_block_.assign(sums_.size(), Sums{});
-  open_samples_ = 0;
-  if (blocks_.size() < kMaxBlocks) return;
-  // Full: merge neighbours, so the blocks stay contiguous and of equal length.
-  for (std::size_t b = 0; b < kMaxBlocks / 2; ++b) {
-    blocks_[b] = blocks_[2 * b];
-    add(blocks_[b], blocks_[2 * b + 1]);
-  }
-  blocks_.resize(kMaxBlocks / 2);
-  block_length_ *= 2;
+  blocks_.add(scratch_);
 }
 
 std::vector<ZoneAverages> ZoneProfile::averages() const {
@@ -142,19 +125,13 @@ std::vector<ZoneAverages> ZoneProfile::averages() const {
   return out;
 }
 
-// Standard error of the mean of per-block values (NaN with too few blocks to say).
-static double blocked_error(const std::vector<double>& per_block) {
-  if (per_block.size() < 2 * ZoneProfile::kMinErrorBlocks) return std::numeric_limits<double>::quiet_NaN();
-  return analysis::block_average(per_block, ZoneProfile::kMinErrorBlocks).standard_error;
-}
-
 void ZoneProfile::add_errors(std::vector<ZoneAverages>& out) const {
   for (std::size_t z = 0; z < out.size(); ++z) {
     std::vector<double> nu, lan, time_mean;
     std::array<std::vector<double>, 3> u;
-    for (const auto& block : blocks_) {
+    for (const auto& block : blocks_.blocks()) {
       const Sums& s = block[z];
-      nu.push_back(s.solid_volume / (zone_volume_[z] * block_length_));
+      nu.push_back(s.solid_volume / (zone_volume_[z] * blocks_.block_length()));
       if (s.mass <= 0.0) continue;  // velocity and temperature are undefined in an empty block
       double tm = 0.0;
       for (int axis = 0; axis < 3; ++axis) {
@@ -166,10 +143,10 @@ void ZoneProfile::add_errors(std::vector<ZoneAverages>& out) const {
       time_mean.push_back(tm);
     }
     ZoneAverages& a = out[z];
-    a.solids_fraction_error = blocked_error(nu);
-    for (int axis = 0; axis < 3; ++axis) a.mean_velocity_error[axis] = blocked_error(u[axis]);
-    a.temperature_lan_error = blocked_error(lan);
-    a.temperature_time_mean_error = blocked_error(time_mean);
+    a.solids_fraction_error = blocked_standard_error(nu);
+    for (int axis = 0; axis < 3; ++axis) a.mean_velocity_error[axis] = blocked_standard_error(u[axis]);
+    a.temperature_lan_error = blocked_standard_error(lan);
+    a.temperature_time_mean_error = blocked_standard_error(time_mean);
   }
 }
 

@@ -11,6 +11,7 @@
 #include <array>
 #include <vector>
 
+#include "grainflow/observe/block_sums.hpp"
 #include "grainflow/observe/partial_volume.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
@@ -45,8 +46,8 @@ class ZoneProfile {
   // temperature about its instantaneous mean, (1/3) sum m |v - u(y,t)|^2 / sum m. Not accumulated.
   double instantaneous_temperature(const ParticleStore& particles);
   // Full blocks available for the error bars; below 2 * kMinErrorBlocks the errors read NaN.
-  long error_blocks() const { return static_cast<long>(blocks_.size()); }
-  static constexpr std::size_t kMaxBlocks = 512, kMinErrorBlocks = 8;
+  long error_blocks() const { return static_cast<long>(blocks_.blocks().size()); }
+  static constexpr std::size_t kMaxBlocks = kMaxErrorBlocks, kMinErrorBlocks = observe::kMinErrorBlocks;
   long samples() const { return samples_; }
   int axis() const { return axis_; }
 
@@ -54,6 +55,7 @@ class ZoneProfile {
   struct Sums {
     double mass = 0.0, solid_volume = 0.0;
     Vec3 momentum, second_moment, fluctuation_lan;  // sum m v, sum m v^2, sum m (v - u_inst)^2
+    Sums& operator+=(const Sums& o);
   };
   int axis_;
   double lo_, hi_, thickness_;  // m; the last zone ends at hi_
@@ -62,16 +64,12 @@ class ZoneProfile {
   void for_each_overlap(const ParticleStore& p, std::size_t i, Visit&& visit) const;
   void fill_masses(const ParticleStore& p);
   void fill_fluctuations(const ParticleStore& p);
-  static void add(std::vector<Sums>& to, const std::vector<Sums>& from);
   void add_errors(std::vector<ZoneAverages>& out) const;
 
   std::vector<Sums> sums_;
   std::vector<Sums> scratch_;
   long samples_ = 0;
-  // Block sums for the error bars: full blocks of block_length_ samples each, and the open one.
-  std::vector<std::vector<Sums>> blocks_;
-  std::vector<Sums> open_block_;
-  long block_length_ = 1, open_samples_ = 0;
+  BlockSums<Sums> blocks_;  // for the error bars
 };
 
 }  // namespace grainflow::observe

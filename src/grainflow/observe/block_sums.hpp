@@ -1,0 +1,60 @@
+// Error bars for long-term averages of profiles: each sample's per-bin sums (one `Sums` per zone or
+// strip) are added into contiguous blocks of equal length. At most kMaxBlocks are kept; when full,
+// neighbours merge pairwise and the block length doubles, so memory stays bounded however long the
+// run. The standard error of an average then comes from Flyvbjerg-Petersen blocking of its
+// per-block values (analysis/block_average). `Sums` needs a default state of zero and `+=`.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "grainflow/analysis/block_average.hpp"
+
+namespace grainflow::observe {
+
+// At most this many blocks are kept (neighbours merge when full).
+inline constexpr std::size_t kMaxErrorBlocks = 512;
+// Blocking levels need at least this many blocks; below twice as many blocks the error is unknown.
+inline constexpr std::size_t kMinErrorBlocks = 8;
+
+template <class Sums>
+class BlockSums {
+ public:
+  static constexpr std::size_t kMaxBlocks = kMaxErrorBlocks;
+
+  // One sample's sums, one per bin (the bin count is fixed by the first sample).
+  void add(const std::vector<Sums>& sample) {
+    if (open_.empty()) open_.assign(sample.size(), Sums{});
+    for (std::size_t b = 0; b < sample.size(); ++b) open_[b] += sample[b];
+    if (++open_samples_ < block_length_) return;
+    blocks_.push_back(std::move(open_));
+    open_.assign(sample.size(), Sums{});
+    open_samples_ = 0;
+    if (blocks_.size() < kMaxBlocks) return;
+    for (std::size_t b = 0; b < kMaxBlocks / 2; ++b) {
+      std::vector<Sums> merged = std::move(blocks_[2 * b]);  // (b = 0 would self-move)
+      for (std::size_t bin = 0; bin < merged.size(); ++bin) merged[bin] += blocks_[2 * b + 1][bin];
+      blocks_[b] = std::move(merged);
+    }
+    blocks_.resize(kMaxBlocks / 2);
+    block_length_ *= 2;
+  }
+
+  // The full blocks, oldest first: blocks()[k][bin] sums block_length() samples.
+  const std::vector<std::vector<Sums>>& blocks() const { return blocks_; }
+  long block_length() const { return block_length_; }
+
+ private:
+  std::vector<std::vector<Sums>> blocks_;
+  std::vector<Sums> open_;
+  long block_length_ = 1, open_samples_ = 0;
+};
+
+// Standard error of the mean of per-block values; NaN with fewer than 2 kMinErrorBlocks of them.
+inline double blocked_standard_error(const std::vector<double>& per_block) {
+  if (per_block.size() < 2 * kMinErrorBlocks) return std::numeric_limits<double>::quiet_NaN();
+  return analysis::block_average(per_block, kMinErrorBlocks).standard_error;
+}
+
+}  // namespace grainflow::observe
