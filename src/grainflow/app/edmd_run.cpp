@@ -1,5 +1,6 @@
 #include "grainflow/app/edmd_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 #include <variant>
 
+#include "grainflow/app/edmd_trajectory_output.hpp"
 #include "grainflow/app/run_support.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
@@ -45,6 +47,8 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   const std::string dir = options.output_directory;
   std::optional<io::PvdSeries> snapshots;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
+  std::optional<EdmdTrajectoryOutput> trajectory;  // [trajectory]: instantaneous states for the distributions
+  if (c.trajectory.enabled) std::visit([&](auto& e) { trajectory.emplace(c, e.state(), dir); }, engine);
 
   // Box measure: area in 2D, volume in 3D; a Couette cell's follows its walls and width.
   double measure = 1.0;
@@ -108,8 +112,10 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
             while (true) {
               const double next_row = std::min(end_time, row * c.output.interval);
               const double next_shot = snapshots ? shot * c.output.snapshot_interval : kNeverTime;
-              const double t = std::min(next_row, next_shot);
+              const double next_sample = trajectory ? trajectory->next_time() : kNeverTime;
+              const double t = std::min({next_row, next_shot, next_sample});
               e.advance_to(t);
+              if (trajectory && next_sample <= t) trajectory->sample(e.state());
               if (snapshots && next_shot <= t) {
                 snapshots->add(e.state().particles, e.state().time);
                 ++shot;
@@ -202,6 +208,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
           summary.number("wall_gap", e.servo().gap);
           summary.number("cell_width", e.servo().width);
         }
+        if (trajectory) trajectory->finish(warnings);
         exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
       },
       engine);
