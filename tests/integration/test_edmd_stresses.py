@@ -138,7 +138,7 @@ def check_chute(exe, tmp):
 def check_switch(exe, tmp):
     out = os.path.join(tmp, "off")
     status, _, err = run(exe, "run", COUETTE, "-o", out, "--quiet", "--set", "run.duration=200",
-                         "--set", "output.collision_stresses=false")
+                         "--set", "trajectory.start=0", "--set", "output.collision_stresses=false")
     if check(status == 0, f"off: exited {status}: {err.strip()}"):
         for name in FILES:
             check(not os.path.exists(os.path.join(out, name)), f"off: {name} written")

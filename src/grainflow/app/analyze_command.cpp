@@ -10,6 +10,7 @@
 #include "grainflow/analysis/correlation.hpp"
 #include "grainflow/analysis/diffusion.hpp"
 #include "grainflow/analysis/spectrum.hpp"
+#include "grainflow/app/analyze_distributions.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/hdf5_file.hpp"
@@ -153,7 +154,8 @@ int analyze_run(const std::string& output_directory, const AnalyzeOptions& optio
                      "no trajectory.h5 or zone_series.h5 in this folder: add a [trajectory] or [zone_series] table to "
                      "the case (docs/CASE_FILES.md) and run it");
   fs::create_directories(dir / "analysis");
-  if (trajectory) analyze_trajectory(dir, options);
+  if (trajectory && is_edmd_trajectory((dir / "trajectory.h5").string())) analyze_distributions(dir.string(), options);
+  else if (trajectory) analyze_trajectory(dir, options);
   if (zone_series) analyze_zone_series(dir);
   return 0;
 }

@@ -12,6 +12,7 @@
 
 #include "grainflow/app/edmd_collision_outputs.hpp"
 #include "grainflow/app/edmd_profiles.hpp"
+#include "grainflow/app/edmd_trajectory_output.hpp"
 #include "grainflow/app/run_support.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
@@ -49,6 +50,8 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   const std::string dir = options.output_directory;
   std::optional<io::PvdSeries> snapshots;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
+  std::optional<EdmdTrajectoryOutput> trajectory;  // [trajectory]: instantaneous states for the distributions
+  if (c.trajectory.enabled) std::visit([&](auto& e) { trajectory.emplace(c, e.state(), dir); }, engine);
 
   // Box measure: area in 2D, volume in 3D; a Couette cell's follows its walls and width.
   double measure = 1.0;
@@ -118,9 +121,11 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
               const double next_row = std::min(end_time, row * c.output.interval);
               const double next_shot = snapshots ? shot * c.output.snapshot_interval : kNeverTime;
               const double next_sample = collision_outputs ? sample * sample_interval : kNeverTime;
-              const double t = std::min({next_row, next_shot, next_sample, profiles.next_time()});
+              const double next_state = trajectory ? trajectory->next_time() : kNeverTime;
+              const double t = std::min({next_row, next_shot, next_sample, profiles.next_time(), next_state});
               e.advance_to(t);
               if (profiles.next_time() <= t) profiles.sample(e.state(), e.counters().collisions);
+              if (trajectory && next_state <= t) trajectory->sample(e.state());
               if (snapshots && next_shot <= t) {
                 snapshots->add(e.state().particles, e.state().time);
                 ++shot;
@@ -227,6 +232,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
         for (const auto& r : rows) row_time.push_back(r.time), row_energy.push_back(r.global.kinetic_energy);
         const double began = std::isfinite(profiles.first_sample_time()) ? profiles.first_sample_time() : c.output.average_start;
         report_steady_state(row_time, row_energy, began, summary, warnings);
+        if (trajectory) trajectory->finish(warnings);
         exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
       },
       engine);

@@ -93,6 +93,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2LL, 1000000000LL));
   analyze->add_option("--groups", analyze_options.groups, "independent particle groups for the error bars (default 8)")
       ->check(CLI::Range(1, 1000000));
+  std::vector<int> analyze_strips;
+  analyze->add_option("--strips", analyze_strips,
+                      "edmd: count only particles in strips FIRST..LAST (from the bottom wall; default all)")
+      ->expected(2)
+      ->check(CLI::NonNegativeNumber);
 
   // grainflow sweep: the case at many values of some keys, runs in parallel (app/sweep_command.hpp).
   app::SweepOptions sweep_options;
@@ -148,7 +153,13 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("cases")) return list_cases();
     if (app.got_subcommand("plot")) return plot(plot_dir);
-    if (app.got_subcommand("analyze")) return app::analyze_run(analyze_dir, analyze_options);
+    if (app.got_subcommand("analyze")) {
+      if (analyze_strips.size() == 2) {
+        analyze_options.first_strip = analyze_strips[0];
+        analyze_options.last_strip = analyze_strips[1];
+      }
+      return app::analyze_run(analyze_dir, analyze_options);
+    }
     if (app.got_subcommand("theory")) return app::run_theory(theory_options);
     if (app.got_subcommand("sweep")) return app::run_sweep(sweep_options, std::vector<std::string>(argv, argv + argc));
     if (app.got_subcommand("calibrate")) {

@@ -167,12 +167,15 @@ struct TracersConfig {
   double interval = 0.0;    // s; 0 = 1 / (20 f) with a drive along gravity, else output.interval
 };
 
-// [trajectory]: windowed samples of chosen particles' velocities and unwrapped positions for
-// correlation functions and diffusion (Lan 1994 sections 3.2-3.3), written to trajectory.h5.
+// [trajectory]: samples of chosen particles written to trajectory.h5. DEM: windowed velocities and
+// unwrapped positions for correlation functions and diffusion (Lan 1994 sections 3.2-3.3). EDMD:
+// instantaneous states (positions, velocities, spins, walls) for Campbell's velocity and pair
+// distributions (Campbell 1982 section 3.4).
 struct TrajectoryConfig {
   bool enabled = false;
   double start = -1.0;           // s; < 0: output.average_start
-  double window = 0.0;           // s, t_s; 0: (collision_steps / 2) time steps, Lan's half collision time
+  double window = 0.0;           // s, t_s (dem); 0: (collision_steps / 2) time steps, Lan's half collision time
+  double interval = 0.0;         // s between instantaneous samples (edmd); 0: the rest of the run / samples
   long long samples = 2000;      // windows to record
   long long max_lag = 0;         // samples, the longest lag `grainflow analyze` uses; 0: samples / 2
   std::vector<std::uint32_t> particles;  // ids to follow; empty: every free particle
@@ -216,5 +219,11 @@ struct CaseConfig {
   TracersConfig tracers;
   std::vector<InitialParticle> initial_particles;  // read from particles.file
 };
+
+// An event-driven trajectory's sampling grid: the first sample (trajectory.start, else
+// output.average_start) and the spacing (trajectory.interval, else the rest of the run spread
+// evenly over the samples: t_k = start + k interval, k = 0 .. samples - 1, the last before the end).
+double trajectory_start(const CaseConfig& c);
+double edmd_trajectory_interval(const CaseConfig& c);
 
 }  // namespace grainflow

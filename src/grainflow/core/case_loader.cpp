@@ -388,13 +388,20 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
   if (top.has("trajectory")) {
     TomlReader r = top.table("trajectory");
     auto& t = c.trajectory;
-    if (c.engine.kind != "dem") top.fail("trajectory", "trajectory sampling is implemented for the DEM engine only");
     t.enabled = true;
     read_sampling(r, t.start, t.samples, 2);
-    t.window = r.number("window", 0.0);
-    if (t.window < 0.0) r.fail("window", "must not be negative (0 = half a collision time, Lan's t_s)");
-    t.max_lag = r.integer("max_lag", 0);
-    if (t.max_lag < 0 || t.max_lag >= t.samples) r.fail("max_lag", "must lie in [0, samples) (0 = samples / 2)");
+    if (c.engine.kind == "dem") {  // windowed averages for correlations (Lan)
+      if (r.has("interval")) r.fail("interval", "is for event-driven runs; a DEM trajectory's samples are `window` apart");
+      t.window = r.number("window", 0.0);
+      if (t.window < 0.0) r.fail("window", "must not be negative (0 = half a collision time, Lan's t_s)");
+      t.max_lag = r.integer("max_lag", 0);
+      if (t.max_lag < 0 || t.max_lag >= t.samples) r.fail("max_lag", "must lie in [0, samples) (0 = samples / 2)");
+    } else {  // instantaneous states for distributions (Campbell)
+      for (const char* key : {"window", "max_lag"})
+        if (r.has(key)) r.fail(key, "is for DEM runs; an event-driven trajectory holds instantaneous states `interval` apart");
+      t.interval = r.number("interval", 0.0);
+      if (t.interval < 0.0) r.fail("interval", "must not be negative (0 = the rest of the run spread over the samples)");
+    }
     if (const toml::node* ids = r.raw("particles")) {
       if (const auto* word = ids->as_string()) {
         if (word->get() != "all") r.fail("particles", "must be \"all\" or an array of particle ids");

@@ -196,6 +196,21 @@ void validate_edmd(const CaseConfig& c) {
   // Strips thinner than a radius would only split each particle into more pieces (as for dem).
   if (c.output.zone_thickness > 0.0 && c.output.zone_thickness < 0.5 * max_diameter)
     fail(c, "output.zone_thickness", "must be at least the radius of the largest particle");
+  if (c.trajectory.enabled) {
+    const auto& t = c.trajectory;
+    if (t.interval == 0.0 && !(trajectory_start(c) < c.run.duration))
+      fail(c, "trajectory.start", "the samples would start at " + std::to_string(trajectory_start(c)) +
+                                      " s, not before run.duration: start earlier or set trajectory.interval");
+    for (auto id : t.particles)
+      if (id >= static_cast<std::uint64_t>(total))
+        fail(c, "trajectory.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
+                                            std::to_string(total - 1) + ")");
+    const double followed = t.particles.empty() ? static_cast<double>(total) : t.particles.size();
+    const double bytes = 72.0 * followed * static_cast<double>(t.samples);  // position, velocity, spin: 9 doubles
+    if (bytes > 64e9)
+      fail(c, "trajectory.samples", "trajectory.h5 would hold " + std::to_string(bytes / 1e9) +
+                                        " GB; follow fewer particles or take fewer samples");
+  }
   if (c.particles.initial_profile == "couette" && (c.domain.faces[2] != FaceKind::wall || c.domain.faces[3] != FaceKind::wall))
     fail(c, "particles.initial_profile", "the couette profile needs walls at ylo and yhi");
   if (c.particles.init != "file") {

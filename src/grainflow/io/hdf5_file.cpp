@@ -192,6 +192,10 @@ bool H5Reader::has(const std::string& name) const {
   return H5Lexists(file_.get(), name.c_str(), H5P_DEFAULT) > 0;
 }
 
+bool H5Reader::has_attribute(const std::string& where, const std::string& key) const {
+  return H5Aexists_by_name(file_.get(), where.c_str(), key.c_str(), H5P_DEFAULT) > 0;
+}
+
 H5Array H5Reader::read(const std::string& name) const {
   H5Handle d(check(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), path_, "open dataset '" + name + "'"), close_dataset);
   H5Handle space(check(H5Dget_space(d.get()), path_, "get the space of '" + name + "'"), close_space);

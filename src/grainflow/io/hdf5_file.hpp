@@ -92,6 +92,7 @@ class H5Reader {
  public:
   explicit H5Reader(std::string path);
   bool has(const std::string& name) const;
+  bool has_attribute(const std::string& where, const std::string& key) const;
   H5Array read(const std::string& name) const;            // any numeric dataset, as doubles
   double number(const std::string& where, const std::string& key) const;
   std::string text(const std::string& where, const std::string& key) const;
