@@ -20,7 +20,7 @@ import numpy as np
 
 from .common import PlotError, existing, read_table, save_atomically
 
-COLUMNS = ["column", "row", "horizontal", "vertical", "samples", "velocity_horizontal", "velocity_vertical", "speed"]
+COLUMNS = ["column", "row", "horizontal", "vertical", "visits", "velocity_horizontal", "velocity_vertical", "speed"]
 ARROW_CELL_SHARE = 0.9  # the fastest cell's arrow spans this share of a cell
 
 
@@ -56,7 +56,7 @@ class Field:
         self.h = self.scale * table["horizontal"][keep]
         self.v = self.scale * table["vertical"][keep]
         self.column = table["column"][keep].astype(int)
-        self.samples = table["samples"][keep]
+        self.samples = table["visits"][keep]
         self.u = table["velocity_horizontal"][keep]
         self.w = table["velocity_vertical"][keep]
         self.speed = table["speed"][keep]
