@@ -8,12 +8,12 @@
 #pragma once
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "grainflow/analysis/state_samples.hpp"
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
+#include "elastic_gas_case.hpp"
 
 namespace grainflow::test {
 
@@ -24,33 +24,7 @@ inline double gas_box_length() { return 10.0 * std::sqrt(M_PI / kGasFraction); }
 
 inline analysis::StateSamples elastic_disc_gas_samples(int samples, double interval = 0.5, double relax = 50.0) {
   const double length = gas_box_length();
-  char text[2048];
-  std::snprintf(text, sizeof text, R"([engine]
-kind = "edmd"
-dimension = 2
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [%.17g, %.17g, 1.0]
-boundary = { x = "periodic", y = "periodic", z = "periodic" }
-[gravity]
-vector = [0.0, 0.0, 0.0]
-[[species]]
-name = "disc"
-diameter = 2.0
-density = 0.3183098861837907
-count = %d
-[particles]
-init = "lattice"
-lattice_spacing = %.17g
-initial_temperature = 1.0
-seed = 5
-[collision]
-restitution = 1.0
-tangential_restitution = 1.0
-[run]
-duration = 1.0
-)",
-                length, length, kGasDiscs, std::sqrt(M_PI / kGasFraction) / 2.0 * (1.0 - 1e-9));
+  const std::string text = elastic_gas_case({2, 10, kGasFraction, 2.0, 1.0, false, 5});
   edmd::EdmdEngine<2> e(edmd::build_edmd_state(load_case_from_string(text, "elastic_disc_gas.toml")));
   const auto& p = e.state().particles;
   analysis::StateSamples s;

@@ -11,6 +11,8 @@
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "grainflow/observe/collision_angles.hpp"
 
+#include "elastic_gas_case.hpp"
+
 using namespace grainflow;
 using observe::CollisionAngles;
 
@@ -29,37 +31,7 @@ class AngleRecorder : public edmd::CollisionObserver {
 };
 
 // An elastic smooth gas of unit particles at packing fraction 0.3 in a periodic box, T = 1.
-std::string gas(int dim, int n) {
-  const double volume = dim == 3 ? M_PI / 6.0 : M_PI / 4.0, spacing = std::pow(volume / 0.3, 1.0 / dim);
-  const double length = n * spacing;
-  char text[1024];
-  std::snprintf(text, sizeof text, R"([engine]
-kind = "edmd"
-dimension = %d
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [%.17g, %.17g, %.17g]
-boundary = { x = "periodic", y = "periodic", z = "periodic" }
-[gravity]
-vector = [0.0, 0.0, 0.0]
-[[species]]
-name = "p"
-diameter = 1.0
-density = 1.0
-count = %d
-[particles]
-init = "lattice"
-lattice_spacing = %.17g
-initial_temperature = 1.0
-seed = 5
-[collision]
-restitution = 1.0
-[run]
-duration = 1.0
-)",
-                dim, length, length, dim == 3 ? length : 1.0, dim == 3 ? n * n * n : n * n, spacing * (1.0 - 1e-9));
-  return text;
-}
+std::string gas(int dim, int n) { return test::elastic_gas_case({dim, n, 0.3}); }
 
 // Every bin's count within 4.5 binomial standard deviations of N/50 (all 50 pass by chance with
 // probability 1 - 3e-4 for independent collisions), and chi^2 over the 49 degrees of freedom below

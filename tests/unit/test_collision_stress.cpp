@@ -18,6 +18,8 @@
 #include "grainflow/observe/wall_stress.hpp"
 #include "test_support.hpp"
 
+#include "elastic_gas_case.hpp"
+
 using namespace grainflow;
 using namespace grainflow::edmd;
 using observe::StressProfile;
@@ -86,41 +88,10 @@ class Recorder : public CollisionObserver {
   double virial_start_ = 0.0;
 };
 
-// n x n unit discs at area fraction phi, elastic, on a square lattice in a box periodic along x and,
-// with `walls`, between smooth elastic walls at y = 0 and L, else periodic along y too. Zero total
-// momentum, T = 1. `tangential`: tangential restitution (-1 smooth, +1 elastic rough).
+// n x n unit discs at area fraction phi, elastic, periodic along x and, with `walls`, between smooth
+// elastic walls at y = 0 and L, else periodic along y too (elastic_gas_case.hpp).
 std::string disc_gas(int n, double phi, double tangential, bool walls, int seed) {
-  const double spacing = std::sqrt(M_PI / 4.0 / phi), length = n * spacing;
-  char text[2048];
-  std::snprintf(text, sizeof text, R"([engine]
-kind = "edmd"
-dimension = 2
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [%.17g, %.17g, 1.0]
-boundary = { x = "periodic", y = "%s", z = "periodic" }
-[gravity]
-vector = [0.0, 0.0, 0.0]
-[[species]]
-name = "disc"
-diameter = 1.0
-density = %.17g
-count = %d
-[particles]
-init = "lattice"
-lattice_spacing = %.17g
-initial_temperature = 1.0
-seed = %d
-[collision]
-restitution = 1.0
-tangential_restitution = %g
-%s
-[run]
-duration = 1.0
-)",
-                length, length, walls ? "wall" : "periodic", 4.0 / M_PI, n * n, spacing * (1.0 - 1e-9), seed, tangential,
-                walls ? "[walls.ylo]\nrestitution = 1.0\ncondition = \"smooth\"\n[walls.yhi]\nrestitution = 1.0\ncondition = \"smooth\"" : "");
-  return text;
+  return test::elastic_gas_case({2, n, phi, 1.0, tangential, walls, seed});
 }
 
 EdmdEngine<2> engine2(const std::string& text) {

@@ -19,6 +19,8 @@
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "test_support.hpp"
 
+#include "elastic_gas_case.hpp"
+
 using namespace grainflow;
 using namespace grainflow::edmd;
 
@@ -33,42 +35,9 @@ constexpr double kRunScale = 1.0;
 constexpr double kRunScale = 0.1;
 #endif
 
-// An elastic gas of n^dim unit particles at packing fraction phi in a periodic box, started on a
-// square/simple-cubic lattice whose spacing gives exactly phi, Gaussian velocities at T = 1 with
-// zero total momentum. `tangential` is the tangential restitution (-1 smooth, +1 elastic rough).
+// An elastic gas of n^dim unit particles at packing fraction phi in a periodic box (elastic_gas_case.hpp).
 std::string gas_case(int dim, int n, double phi, double tangential, int seed) {
-  const double volume = dim == 3 ? M_PI / 6.0 : M_PI / 4.0;
-  const double spacing = std::pow(volume / phi, 1.0 / dim), length = n * spacing;
-  const int count = dim == 3 ? n * n * n : n * n;
-  char text[2048];
-  std::snprintf(text, sizeof text, R"([engine]
-kind = "edmd"
-dimension = %d
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [%.17g, %.17g, %.17g]
-boundary = { x = "periodic", y = "periodic", z = "periodic" }
-[gravity]
-vector = [0.0, 0.0, 0.0]
-[[species]]
-name = "p"
-diameter = 1.0
-density = %.17g
-count = %d
-[particles]
-init = "lattice"
-lattice_spacing = %.17g
-initial_temperature = 1.0
-seed = %d
-[collision]
-restitution = 1.0
-tangential_restitution = %g
-[run]
-duration = 1.0
-)",
-                dim, length, length, dim == 3 ? length : 1.0, 1.0 / volume, count,
-                spacing * (1.0 - 1e-9) /* n sites fit in the box despite rounding */, seed, tangential);
-  return text;
+  return test::elastic_gas_case({dim, n, phi, 1.0, tangential, false, seed});
 }
 
 template <int Dim>

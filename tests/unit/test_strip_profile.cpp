@@ -14,6 +14,8 @@
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "grainflow/observe/strip_profile.hpp"
 
+#include "elastic_gas_case.hpp"
+
 using namespace grainflow;
 using namespace grainflow::observe;
 namespace q = grainflow::observe::strip;
@@ -166,36 +168,8 @@ TEST(StripProfile, ElasticRoughDiscsShareEnergyEquallyInEveryStrip) {
 #else
   constexpr double kDuration = 800.0;   // sanitizer builds run ~20 times slower
 #endif
-  const std::string text = R"([engine]
-kind = "edmd"
-dimension = 2
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [20.0, 20.0, 1.0]
-boundary = { x = "periodic", y = "wall", z = "periodic" }
-[gravity]
-vector = [0.0, 0.0, 0.0]
-[[species]]
-name = "disc"
-diameter = 1.0
-density = 1.2732395447351628
-count = 100
-[particles]
-init = "lattice"
-lattice_spacing = 2.0
-initial_temperature = 1.0
-seed = 11
-[collision]
-restitution = 1.0
-tangential_restitution = 1.0
-inertia_factor = 0.5
-[walls.ylo]
-restitution = 1.0
-[walls.yhi]
-restitution = 1.0
-[run]
-duration = 1.0
-)";
+  // 100 unit discs of diameter 1 between smooth walls 20 apart: lattice spacing 2, area fraction pi/16.
+  const std::string text = test::elastic_gas_case({2, 10, M_PI / 16.0, 1.0, 1.0, true, 11});
   edmd::EdmdEngine<2> engine(edmd::build_edmd_state(load_case_from_string(text, "rough_gas.toml")));
   const ParticleStore& p = engine.state().particles;
   double energy = 0.0, mass = 0.0, px = 0.0;
