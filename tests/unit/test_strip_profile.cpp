@@ -147,7 +147,8 @@ TEST(StripProfile, RotationalTemperatureUsesBetaOfDiscs) {
   add(p, {6.0, 2.0, 0.0}, r, m, {-a, -b, 0.0}, {0.0, 0.0, mean_spin - omega0});
   StripProfile profile(2, 1);
   profile.sample(p, StripGrid(2, 1, 0.0, 4.0, 1, 10.0));
-  const auto& x = profile.averages()[0].value;
+  const auto averages = profile.averages();  // by value: keep it alive while x refers into it
+  const auto& x = averages[0].value;
   const double rotational = 0.5 * r * r * omega0 * omega0;
   EXPECT_NEAR(x[q::omega_z], mean_spin, 1e-12);
   EXPECT_NEAR(x[q::rotational_temperature], rotational, 1e-12);
