@@ -283,6 +283,71 @@ def build_sweep(folder):
     write(os.path.join(folder, "sweep.json"), json.dumps({"case": "synthetic/bed.toml", "mode": "product"}))
 
 
+EDMD_PNGS = ["timeseries.png", "strip_profiles.png", "temperature_components.png", "stresses.png",
+             "collision_angles.png"]
+REAL_EDMD_PNGS = EDMD_PNGS
+STRIP_HEADER = ("strip,y,y_over_gap,solids_fraction,solids_fraction_error,particles,particles_error,u,u_error,v,"
+                "v_error,omega,omega_error,u_variance,u_variance_error,v_variance,v_variance_error,uv_covariance,"
+                "uv_covariance_error,rotational_temperature,rotational_temperature_error,granular_temperature,"
+                "granular_temperature_error,temperature,temperature_error,translational_temperature,"
+                "translational_temperature_error,temperature_lan,temperature_lan_error,u_variance_scaled,"
+                "u_variance_scaled_error,v_variance_scaled,v_variance_scaled_error,rotational_temperature_scaled,"
+                "rotational_temperature_scaled_error,granular_temperature_scaled,granular_temperature_scaled_error,"
+                "du_dy,du_dy_error,S_prose,S_listing,plug_flow").split(",")
+
+
+def build_edmd(folder):
+    """An event-driven Couette cell's outputs (app/edmd_run.cpp's files and columns), synthetic:
+    12 strips, a linear velocity profile, a denser plug in the middle."""
+    gap, u_t, strips = 24.0, 1.0, 12
+    write(os.path.join(folder, "summary.json"), json.dumps({
+        "engine": "edmd", "dimension": 2, "particles": 40, "case": "synthetic/couette.toml",
+        "savage_jeffrey_S": 1.5, "mean_gap": gap, "shear_speed": u_t, "profile_samples": 100, "errors": [],
+        "warnings": []}))
+    write_csv(os.path.join(folder, "timeseries.csv"),
+              ["time", "kinetic_energy", "rotational_energy", "granular_temperature", "collisions",
+               "wall_collisions", "events", "pressure", "dissipated"],
+              [[10.0 * k, 1.0, 0.01, 0.05, 100 * k, 10 * k, 300 * k, 0.002, 0.01 * k] for k in range(20)])
+    rows = []
+    for k in range(strips):
+        fraction = (k + 0.5) / strips
+        value = {name: 0.01 for name in STRIP_HEADER}
+        value.update(strip=k, y=fraction * gap, y_over_gap=fraction, solids_fraction=0.5 + 0.3 * (k in (5, 6)),
+                     u=u_t * fraction, plug_flow=int(k in (5, 6)), granular_temperature=0.003, u_variance=0.004,
+                     v_variance=0.002, rotational_temperature=0.001)
+        for name in ("granular_temperature", "u_variance", "v_variance", "rotational_temperature"):
+            value[name + "_scaled"] = value[name] * (gap / u_t) ** 2
+        rows.append([value[name] for name in STRIP_HEADER])
+    write_csv(os.path.join(folder, "profiles.csv"), STRIP_HEADER, rows,
+              ("strip profiles (Campbell 1982 sections 3.1-3.2): 100 samples (synthetic)",
+               f"couette: mean gap H = {gap} m, U_T = {u_t} m/s", "units: ..."))
+    parts = [f"{p}_{c}{e}" for p in ("collisional", "kinetic", "total") for c in ("xx", "xy", "yx", "yy")
+             for e in ("", "_error")]
+    header = ["y", "y_over_H"] + parts + ["number", "mass_density", "collision_rate", "collision_rate_per_particle",
+                                          "dissipation_rate", "momentum_rate_x", "momentum_rate_y", "weight_yx",
+                                          "weight_yy"]
+    rows = []
+    for k in range(strips):
+        row = [(k + 0.5) * gap / strips, (k + 0.5) / strips]
+        for name in parts:
+            share = {"collisional": 0.8, "kinetic": 0.2, "total": 1.0}[name.split("_")[0]]
+            row.append(0.05 * share * 1e-3 if name.endswith("_error") else
+                       share * (-8e-4 if "_yx" in name or "_xy" in name else 1e-3))
+        rows.append(row + [3.5, 0.16, 0.01, 0.2, 3e-5, 0.0, 0.0, -8e-4, 1e-3])
+    write_csv(os.path.join(folder, "stresses.csv"), header, rows)
+    write_csv(os.path.join(folder, "walls.csv"),
+              ["wall", "axis", "position", "area", "collisions", "normal_stress", "normal_stress_error",
+               "shear_stress", "shear_stress_error", "friction", "impulse_angle_deg", "rolling_normal_stress",
+               "rolling_shear_stress", "collision_rate", "dissipation_rate"],
+              [["ylo", "y", 0.0, 9.6, 300, 1e-3, 5e-5, -8e-4, 4e-5, -0.8, -38.7, 0.0, 0.0, 0.015, 3e-5],
+               ["yhi", "y", gap, 9.6, 200, 1e-3, 5e-5, -8e-4, 4e-5, -0.8, -38.7, 0.0, 0.0, 0.01, -9e-4]])
+    theta = (np.arange(50) + 0.5) * 3.6
+    law = [math.erfc(1.5 * math.cos(t) * math.sin(t) / math.sqrt(2)) / math.pi for t in np.radians(theta)]
+    write_csv(os.path.join(folder, "collision_angles.csv"), ["theta_deg", "density", "count", "savage_jeffrey"],
+              [[float(t), float(p), int(1000 * p), float(p)] for t, p in zip(theta, law)],
+              ("units: ... savage_jeffrey 1/rad at S = 1.5",))
+
+
 def plot(folder, exe=None):
     command = [exe, "plot", folder] if exe else ["/usr/bin/python3", SCRIPT, folder]
     result = subprocess.run(command, capture_output=True, text=True, timeout=300)
@@ -317,20 +382,26 @@ def main():
         check(set(pngs_in(full)) == set(RUN_PNGS), f"full run folder: unexpected PNGs {pngs_in(full)}")
         check("wrote" in out and "convection.png" in out, f"full run folder: stdout does not list the PNGs: {out!r}")
 
-        # Only an event-driven time series: only timeseries.png, the rest skipped silently.
-        sparse = os.path.join(tmp, "edmd")
-        os.makedirs(sparse)
-        write_csv(os.path.join(sparse, "timeseries.csv"),
-                  ["time", "kinetic_energy", "rotational_energy", "granular_temperature", "collisions",
-                   "wall_collisions", "events", "pressure", "dissipated"],
-                  [[0.1 * k, 1.0, 0.0, 0.5, 100 * k, 10 * k, 300 * k, 2.0, 0.01 * k] for k in range(20)])
-        with open(os.path.join(sparse, "profiles.csv"), "w") as f:
-            f.write("# strip profiles (Campbell 1982 sections 3.1-3.2): 10 samples\n# units: y m\n"
-                    "strip,y,solids_fraction\n0,1,0.5\n1,3,0.4\n")
-        status, out, err = plot(sparse)
-        check(status == 0 and not err.strip(), f"time series only: exit {status}, stderr: {err.strip()}")
-        check(pngs_in(sparse) == ["timeseries.png"], f"time series only: PNGs {pngs_in(sparse)}")
-        check_pngs(sparse, ["timeseries.png"], "time series only")
+        # An event-driven run's files, synthetic with the writers' column names: the Campbell figures.
+        edmd = os.path.join(tmp, "edmd")
+        build_edmd(edmd)
+        status, out, err = plot(edmd)
+        check(status == 0 and not err.strip(), f"edmd folder: exit {status}, stderr: {err.strip()}")
+        check(set(pngs_in(edmd)) == set(EDMD_PNGS), f"edmd folder: PNGs {pngs_in(edmd)}, expected {EDMD_PNGS}")
+        check_pngs(edmd, EDMD_PNGS, "edmd folder")
+        # A strip profile without a column the figures need: named, the other figures still drawn.
+        edit_path = os.path.join(edmd, "profiles.csv")
+        with open(edit_path) as f:
+            text = f.read()
+        with open(edit_path, "w") as f:
+            f.write(text.replace(",plug_flow", ",plug", 1))
+        for name in ("strip_profiles.png", "temperature_components.png"):
+            os.remove(os.path.join(edmd, name))
+        status, _, err = plot(edmd)
+        check(status == 1 and "profiles.csv" in err and "plug_flow" in err,
+              f"edmd folder without plug_flow: exit {status}, stderr: {err.strip()}")
+        check("stresses.png" in pngs_in(edmd) and "strip_profiles.png" not in pngs_in(edmd),
+              f"edmd folder without plug_flow: PNGs {pngs_in(edmd)}")
 
         # Nothing to plot, no folder.
         empty = os.path.join(tmp, "empty")
@@ -402,6 +473,18 @@ def main():
                 check_pngs(real, ["convection.png", "convection_columns.png", "convection_phases.png", "tracer_height.png",
                             "tracer_coordination.png"],
                            "real run")
+
+            # And a real Campbell Couette cell (0.2 s of simulation time on this machine), analysed:
+            # every Campbell figure from the files the event-driven run really writes.
+            couette = os.path.join(tmp, "real_couette")
+            status, _, err = subprocess_run([exe, "run", "cases/campbell1982/couette_noslip.toml", "-o", couette,
+                                             "--quiet"])
+            if check(status == 0, f"real Couette run: exit {status}, stderr: {err.strip()}"):
+                status, _, err = subprocess_run([exe, "analyze", couette])
+                check(status == 0, f"grainflow analyze of the Couette run: exit {status}, stderr: {err.strip()}")
+                status, _, err = plot(couette, exe)
+                check(status == 0, f"grainflow plot of the real Couette run: exit {status}, stderr: {err.strip()}")
+                check_pngs(couette, REAL_EDMD_PNGS, "real Couette run")
     return finish("test_plot")
 
 
