@@ -284,8 +284,8 @@ def build_sweep(folder):
 
 
 EDMD_PNGS = ["timeseries.png", "strip_profiles.png", "temperature_components.png", "stresses.png",
-             "collision_angles.png"]
-REAL_EDMD_PNGS = EDMD_PNGS
+             "collision_angles.png", "velocity_distributions.png", "pair_distributions.png"]
+REAL_EDMD_PNGS = EDMD_PNGS + ["velocity_distributions.png", "pair_distributions.png"]
 STRIP_HEADER = ("strip,y,y_over_gap,solids_fraction,solids_fraction_error,particles,particles_error,u,u_error,v,"
                 "v_error,omega,omega_error,u_variance,u_variance_error,v_variance,v_variance_error,uv_covariance,"
                 "uv_covariance_error,rotational_temperature,rotational_temperature_error,granular_temperature,"
@@ -346,6 +346,28 @@ def build_edmd(folder):
     write_csv(os.path.join(folder, "collision_angles.csv"), ["theta_deg", "density", "count", "savage_jeffrey"],
               [[float(t), float(p), int(1000 * p), float(p)] for t, p in zip(theta, law)],
               ("units: ... savage_jeffrey 1/rad at S = 1.5",))
+
+    # `grainflow analyze`'s distributions: half-normal P1-P3, chi densities P4 (k = 2), P5 (k = 3).
+    x = (np.arange(50) + 0.5) * 0.1
+    half_normal = np.sqrt(2 / math.pi) * np.exp(-x ** 2 / 2)
+    chi2, chi3 = 2 * x * np.exp(-x ** 2), np.sqrt(27 / (2 * math.pi)) * 2 * x ** 2 * np.exp(-1.5 * x ** 2)
+    columns = [half_normal, half_normal, half_normal, chi2, chi3]
+    write_csv(os.path.join(folder, "analysis", "velocity_distributions.csv"),
+              ["x"] + [f"p{k}{s}" for k in range(1, 6) for s in ("", "_fit", "_maxwell")],
+              [[float(x[i])] + [float(c[i]) for c in columns for _ in range(3)] for i in range(50)])
+    meta = {"dimension": 2, "diameter": 2.0, "particle_samples": 8000, "solids_fraction": 0.47, "pair_range": 8.0}
+    for k, (components, maxwell) in enumerate((("u", 0.5), ("v", 0.5), ("omega", 0.5), ("u,v", 1.0),
+                                               ("u,v,omega", 1.5)), start=1):
+        meta.update({f"a{k}_components": components, f"a{k}": maxwell, f"a{k}_error": 0.01,
+                     f"a{k}_maxwell": maxwell, f"a{k}_ratio": 1.0, f"a{k}_ratio_error": 0.02})
+    write(os.path.join(folder, "analysis", "distributions.json"), json.dumps(meta))
+    r = (np.arange(50) + 0.5) * 0.16
+    g = 0.15 * (1 + 0.6 * np.exp(-((r - 2.0) / 0.3) ** 2)) * (r > 1.6)
+    write_csv(os.path.join(folder, "analysis", "pair_distributions.csv"),
+              ["r", "normal", "normal_error", "parallel", "parallel_error", "parallel_two_sided",
+               "parallel_two_sided_error", "number_density"],
+              [[float(r[i]), float(g[i]), 0.005, float(g[i]), 0.005, float(g[i]) if r[i] < 4.8 else "nan",
+                0.005 if r[i] < 4.8 else "nan", 0.15] for i in range(50)])
 
 
 def plot(folder, exe=None):
