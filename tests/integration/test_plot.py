@@ -6,15 +6,20 @@ simulation is needed:
   series with the new columns, VACF/MSD/diffusion, zone spectra and floor correlations, and
   zone_series.h5 when h5py is there, convection fields, tracers, a VTU snapshot series written in
   vtu_writer.cpp's format): exit 0 and every expected PNG, each a valid PNG, no temporary file left;
-- a folder with only an event-driven time series and strip profiles: exit 0, timeseries.png and
-  nothing else (Campbell's strip profiles are not Lan's zone profiles);
+- an event-driven Couette cell's files (strip profiles, stresses, walls, collision angles, velocity
+  and pair distributions) with the writers' column names: exit 0 and exactly the Campbell PNGs
+  (strip profiles are not Lan's zone profiles); a strip profile without plug_flow: exit 1 naming
+  the file and column, the other figures still drawn;
 - an empty folder and a missing folder: exit 1 with a message;
 - a malformed convection.csv (a field that is not a number), a tracers.csv without a column and a
   truncated VTU: exit 1, the message names the file, and the other figures are still written;
 - a sweep folder (sweep.csv, sweep.json, member runs with profiles and diffusion.json): exit 0 and
   the sweep_*.png figures.
 With the grainflow executable as the argument (as ctest passes it), `grainflow plot DIR` is run on
-the full folder too.
+the full folder too, and on two real short runs so the fixtures cannot drift from the writers: a
+Chapter 5 run (convection, tracers) and Campbell's Couette cell with snapshots, analysed (every
+Campbell figure, and the film: animation.mp4 with ffmpeg, else animation.gif with one frame per
+snapshot when pillow is there).
 
 Usage: /usr/bin/python3 tests/integration/test_plot.py [PATH_TO_grainflow]  (from the repo root)
 """
@@ -388,6 +393,28 @@ def check_pngs(folder, names, context):
     check(not leftovers, f"{context}: temporary files left behind: {leftovers}")
 
 
+def check_animation(folder, snapshots):
+    """The film of an event-driven run: animation.mp4 with ffmpeg, else animation.gif with pillow
+    (one frame per snapshot up to the cap of 100), else none."""
+    try:
+        from PIL import Image
+    except ImportError:
+        Image = None
+    if os.path.exists("/usr/bin/ffmpeg"):
+        path = os.path.join(folder, "animation.mp4")
+        if check(os.path.isfile(path), "animation.mp4 was not written (ffmpeg is there)"):
+            with open(path, "rb") as f:
+                check(f.read(12)[4:8] == b"ftyp", "animation.mp4 is not an MP4 file")
+    elif Image is not None:
+        path = os.path.join(folder, "animation.gif")
+        if check(os.path.isfile(path), "animation.gif was not written (pillow is there)"):
+            with Image.open(path) as film:
+                check(film.format == "GIF" and film.n_frames == min(snapshots, 100),
+                      f"animation.gif: {film.format}, {film.n_frames} frames of {snapshots} snapshots")
+    else:
+        check(not any(n.startswith("animation.") for n in os.listdir(folder)), "a film without ffmpeg or pillow")
+
+
 def pngs_in(folder):
     return sorted(n for n in os.listdir(folder) if n.endswith(".png"))
 
@@ -403,6 +430,7 @@ def main():
         check_pngs(full, RUN_PNGS, "full run folder")
         check(set(pngs_in(full)) == set(RUN_PNGS), f"full run folder: unexpected PNGs {pngs_in(full)}")
         check("wrote" in out and "convection.png" in out, f"full run folder: stdout does not list the PNGs: {out!r}")
+        check(not any(n.startswith("animation.") for n in os.listdir(full)), "a DEM run got an event-driven film")
 
         # An event-driven run's files, synthetic with the writers' column names: the Campbell figures.
         edmd = os.path.join(tmp, "edmd")
@@ -500,13 +528,15 @@ def main():
             # every Campbell figure from the files the event-driven run really writes.
             couette = os.path.join(tmp, "real_couette")
             status, _, err = subprocess_run([exe, "run", "cases/campbell1982/couette_noslip.toml", "-o", couette,
-                                             "--quiet"])
+                                             "--quiet", "--set", "output.snapshot_interval=60"])
             if check(status == 0, f"real Couette run: exit {status}, stderr: {err.strip()}"):
                 status, _, err = subprocess_run([exe, "analyze", couette])
                 check(status == 0, f"grainflow analyze of the Couette run: exit {status}, stderr: {err.strip()}")
                 status, _, err = plot(couette, exe)
                 check(status == 0, f"grainflow plot of the real Couette run: exit {status}, stderr: {err.strip()}")
                 check_pngs(couette, REAL_EDMD_PNGS, "real Couette run")
+                check_animation(couette, len([n for n in os.listdir(os.path.join(couette, "snapshots"))
+                                              if n.endswith(".vtu")]))
     return finish("test_plot")
 
 
