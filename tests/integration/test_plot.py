@@ -19,7 +19,7 @@ With the grainflow executable as the argument (as ctest passes it), `grainflow p
 the full folder too, and on two real short runs so the fixtures cannot drift from the writers: a
 Chapter 5 run (convection, tracers) and Campbell's Couette cell with snapshots, analysed (every
 Campbell figure, and the film: animation.mp4 with ffmpeg, else animation.gif with one frame per
-snapshot when pillow is there).
+snapshot when pillow is there), and a real sweep of two Couette cells (sweep_strip_profiles.png).
 
 Usage: /usr/bin/python3 tests/integration/test_plot.py [PATH_TO_grainflow]  (from the repo root)
 """
@@ -537,6 +537,16 @@ def main():
                 check_pngs(couette, REAL_EDMD_PNGS, "real Couette run")
                 check_animation(couette, len([n for n in os.listdir(os.path.join(couette, "snapshots"))
                                               if n.endswith(".vtu")]))
+
+            # A real sweep of Couette cells: the members' strip profiles overlaid.
+            couettes = os.path.join(tmp, "real_couette_sweep")
+            status, _, err = subprocess_run([exe, "sweep", "cases/campbell1982/couette_noslip.toml", "--vary",
+                                             "collision.restitution=0.6,0.8", "-o", couettes, "--quiet", "--set",
+                                             "run.duration=1500", "--set", "output.average_start=500"])
+            if check(status == 0, f"real Couette sweep: exit {status}, stderr: {err.strip()}"):
+                status, _, err = plot(couettes, exe)
+                check(status == 0, f"grainflow plot of the Couette sweep: exit {status}, stderr: {err.strip()}")
+                check_pngs(couettes, ["sweep_strip_profiles.png"], "real Couette sweep")
     return finish("test_plot")
 
 
