@@ -85,6 +85,12 @@ def plot_stresses(outdir, info, stresses, walls):
         a.grid(True, alpha=0.3)
         a.legend(loc="best", fontsize=8)
     axes[0].set_ylabel(label)
+    count = stresses.get("number")
+    if count is not None and np.any(count > 0.0) and y.size >= 2:
+        # Over a chute the strips reach the domain's top: end the axis above the last strip holding
+        # 1% of the fullest one's particles (as strip_profiles.png does with nu).
+        last = np.nonzero(count >= 0.01 * np.max(count))[0][-1]
+        axes[0].set_ylim(min(0.0, float(np.min(y))) - 0.05, float(y[last] + abs(y[1] - y[0])))
     figure.suptitle(f"{info.name}\nstresses per strip (Campbell 1982 section 3.3): compressive positive; "
                     "bars: standard errors of the totals and the walls", fontsize=10)
     figure.tight_layout()
