@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libfftw3-dev libhdf5-dev hdf5-tools
   python3-matplotlib python3-numpy python3-h5py
+  ffmpeg
 )
 
 missing=()

@@ -8,8 +8,11 @@ and mass below a depth (profiles.csv), time series (timeseries.csv), velocity au
 mean-square displacement (analysis/vacf.csv, msd.csv), zone spectra and floor correlations
 (analysis/zone_spectra.csv, floor_correlation.csv), convection fields (convection.csv,
 convection_phases.csv), tracer histories (tracers.csv), projected snapshots at eight floor phases
-(snapshots/), and for a sweep folder (sweep.csv) the runs' results against Gamma or the varied key.
-docs/OUTPUTS.md lists each PNG with its Lan figure; the modules are in tools/grainflow_plots/.
+(snapshots/), and for a sweep folder (sweep.csv) the runs' results against Gamma or the varied key;
+for an event-driven run Campbell's (1982) figures: strip profiles, temperature components, stresses,
+collision angles, velocity and pair distributions, and a film of the snapshots.
+docs/OUTPUTS.md lists each figure with its Lan or Campbell figure; the modules are in
+tools/grainflow_plots/.
 
 Each PNG is written under a temporary name in DIR and renamed into place. Needs Debian's
 python3-matplotlib and python3-numpy (python3-h5py for the zone histories and correlation curves).

@@ -6,15 +6,20 @@ simulation is needed:
   series with the new columns, VACF/MSD/diffusion, zone spectra and floor correlations, and
   zone_series.h5 when h5py is there, convection fields, tracers, a VTU snapshot series written in
   vtu_writer.cpp's format): exit 0 and every expected PNG, each a valid PNG, no temporary file left;
-- a folder with only an event-driven time series and strip profiles: exit 0, timeseries.png and
-  nothing else (Campbell's strip profiles are not Lan's zone profiles);
+- an event-driven Couette cell's files (strip profiles, stresses, walls, collision angles, velocity
+  and pair distributions) with the writers' column names: exit 0 and exactly the Campbell PNGs
+  (strip profiles are not Lan's zone profiles); a strip profile without plug_flow: exit 1 naming
+  the file and column, the other figures still drawn;
 - an empty folder and a missing folder: exit 1 with a message;
 - a malformed convection.csv (a field that is not a number), a tracers.csv without a column and a
   truncated VTU: exit 1, the message names the file, and the other figures are still written;
 - a sweep folder (sweep.csv, sweep.json, member runs with profiles and diffusion.json): exit 0 and
   the sweep_*.png figures.
 With the grainflow executable as the argument (as ctest passes it), `grainflow plot DIR` is run on
-the full folder too.
+the full folder too, and on two real short runs so the fixtures cannot drift from the writers: a
+Chapter 5 run (convection, tracers) and Campbell's Couette cell with snapshots, analysed (every
+Campbell figure, and the film: animation.mp4 with ffmpeg, else animation.gif with one frame per
+snapshot when pillow is there), and a real sweep of two Couette cells (sweep_strip_profiles.png).
 
 Usage: /usr/bin/python3 tests/integration/test_plot.py [PATH_TO_grainflow]  (from the repo root)
 """
@@ -283,6 +288,93 @@ def build_sweep(folder):
     write(os.path.join(folder, "sweep.json"), json.dumps({"case": "synthetic/bed.toml", "mode": "product"}))
 
 
+EDMD_PNGS = ["timeseries.png", "strip_profiles.png", "temperature_components.png", "stresses.png",
+             "collision_angles.png", "velocity_distributions.png", "pair_distributions.png"]
+REAL_EDMD_PNGS = EDMD_PNGS + ["velocity_distributions.png", "pair_distributions.png"]
+STRIP_HEADER = ("strip,y,y_over_gap,solids_fraction,solids_fraction_error,particles,particles_error,u,u_error,v,"
+                "v_error,omega,omega_error,u_variance,u_variance_error,v_variance,v_variance_error,uv_covariance,"
+                "uv_covariance_error,rotational_temperature,rotational_temperature_error,granular_temperature,"
+                "granular_temperature_error,temperature,temperature_error,translational_temperature,"
+                "translational_temperature_error,temperature_lan,temperature_lan_error,u_variance_scaled,"
+                "u_variance_scaled_error,v_variance_scaled,v_variance_scaled_error,rotational_temperature_scaled,"
+                "rotational_temperature_scaled_error,granular_temperature_scaled,granular_temperature_scaled_error,"
+                "du_dy,du_dy_error,S_prose,S_listing,plug_flow").split(",")
+
+
+def build_edmd(folder):
+    """An event-driven Couette cell's outputs (app/edmd_run.cpp's files and columns), synthetic:
+    12 strips, a linear velocity profile, a denser plug in the middle."""
+    gap, u_t, strips = 24.0, 1.0, 12
+    write(os.path.join(folder, "summary.json"), json.dumps({
+        "engine": "edmd", "dimension": 2, "particles": 40, "case": "synthetic/couette.toml",
+        "savage_jeffrey_S": 1.5, "mean_gap": gap, "shear_speed": u_t, "profile_samples": 100, "errors": [],
+        "warnings": []}))
+    write_csv(os.path.join(folder, "timeseries.csv"),
+              ["time", "kinetic_energy", "rotational_energy", "granular_temperature", "collisions",
+               "wall_collisions", "events", "pressure", "dissipated"],
+              [[10.0 * k, 1.0, 0.01, 0.05, 100 * k, 10 * k, 300 * k, 0.002, 0.01 * k] for k in range(20)])
+    rows = []
+    for k in range(strips):
+        fraction = (k + 0.5) / strips
+        value = {name: 0.01 for name in STRIP_HEADER}
+        value.update(strip=k, y=fraction * gap, y_over_gap=fraction, solids_fraction=0.5 + 0.3 * (k in (5, 6)),
+                     u=u_t * fraction, plug_flow=int(k in (5, 6)), granular_temperature=0.003, u_variance=0.004,
+                     v_variance=0.002, rotational_temperature=0.001)
+        for name in ("granular_temperature", "u_variance", "v_variance", "rotational_temperature"):
+            value[name + "_scaled"] = value[name] * (gap / u_t) ** 2
+        rows.append([value[name] for name in STRIP_HEADER])
+    write_csv(os.path.join(folder, "profiles.csv"), STRIP_HEADER, rows,
+              ("strip profiles (Campbell 1982 sections 3.1-3.2): 100 samples (synthetic)",
+               f"couette: mean gap H = {gap} m, U_T = {u_t} m/s", "units: ..."))
+    parts = [f"{p}_{c}{e}" for p in ("collisional", "kinetic", "total") for c in ("xx", "xy", "yx", "yy")
+             for e in ("", "_error")]
+    header = ["y", "y_over_H"] + parts + ["number", "mass_density", "collision_rate", "collision_rate_per_particle",
+                                          "dissipation_rate", "momentum_rate_x", "momentum_rate_y", "weight_yx",
+                                          "weight_yy"]
+    rows = []
+    for k in range(strips):
+        row = [(k + 0.5) * gap / strips, (k + 0.5) / strips]
+        for name in parts:
+            share = {"collisional": 0.8, "kinetic": 0.2, "total": 1.0}[name.split("_")[0]]
+            row.append(0.05 * share * 1e-3 if name.endswith("_error") else
+                       share * (-8e-4 if "_yx" in name or "_xy" in name else 1e-3))
+        rows.append(row + [3.5, 0.16, 0.01, 0.2, 3e-5, 0.0, 0.0, -8e-4, 1e-3])
+    write_csv(os.path.join(folder, "stresses.csv"), header, rows)
+    write_csv(os.path.join(folder, "walls.csv"),
+              ["wall", "axis", "position", "area", "collisions", "normal_stress", "normal_stress_error",
+               "shear_stress", "shear_stress_error", "friction", "impulse_angle_deg", "rolling_normal_stress",
+               "rolling_shear_stress", "collision_rate", "dissipation_rate"],
+              [["ylo", "y", 0.0, 9.6, 300, 1e-3, 5e-5, -8e-4, 4e-5, -0.8, -38.7, 0.0, 0.0, 0.015, 3e-5],
+               ["yhi", "y", gap, 9.6, 200, 1e-3, 5e-5, -8e-4, 4e-5, -0.8, -38.7, 0.0, 0.0, 0.01, -9e-4]])
+    theta = (np.arange(50) + 0.5) * 3.6
+    law = [math.erfc(1.5 * math.cos(t) * math.sin(t) / math.sqrt(2)) / math.pi for t in np.radians(theta)]
+    write_csv(os.path.join(folder, "collision_angles.csv"), ["theta_deg", "density", "count", "savage_jeffrey"],
+              [[float(t), float(p), int(1000 * p), float(p)] for t, p in zip(theta, law)],
+              ("units: ... savage_jeffrey 1/rad at S = 1.5",))
+
+    # `grainflow analyze`'s distributions: half-normal P1-P3, chi densities P4 (k = 2), P5 (k = 3).
+    x = (np.arange(50) + 0.5) * 0.1
+    half_normal = np.sqrt(2 / math.pi) * np.exp(-x ** 2 / 2)
+    chi2, chi3 = 2 * x * np.exp(-x ** 2), np.sqrt(27 / (2 * math.pi)) * 2 * x ** 2 * np.exp(-1.5 * x ** 2)
+    columns = [half_normal, half_normal, half_normal, chi2, chi3]
+    write_csv(os.path.join(folder, "analysis", "velocity_distributions.csv"),
+              ["x"] + [f"p{k}{s}" for k in range(1, 6) for s in ("", "_fit", "_maxwell")],
+              [[float(x[i])] + [float(c[i]) for c in columns for _ in range(3)] for i in range(50)])
+    meta = {"dimension": 2, "diameter": 2.0, "particle_samples": 8000, "solids_fraction": 0.47, "pair_range": 8.0}
+    for k, (components, maxwell) in enumerate((("u", 0.5), ("v", 0.5), ("omega", 0.5), ("u,v", 1.0),
+                                               ("u,v,omega", 1.5)), start=1):
+        meta.update({f"a{k}_components": components, f"a{k}": maxwell, f"a{k}_error": 0.01,
+                     f"a{k}_maxwell": maxwell, f"a{k}_ratio": 1.0, f"a{k}_ratio_error": 0.02})
+    write(os.path.join(folder, "analysis", "distributions.json"), json.dumps(meta))
+    r = (np.arange(50) + 0.5) * 0.16
+    g = 0.15 * (1 + 0.6 * np.exp(-((r - 2.0) / 0.3) ** 2)) * (r > 1.6)
+    write_csv(os.path.join(folder, "analysis", "pair_distributions.csv"),
+              ["r", "normal", "normal_error", "parallel", "parallel_error", "parallel_two_sided",
+               "parallel_two_sided_error", "number_density"],
+              [[float(r[i]), float(g[i]), 0.005, float(g[i]), 0.005, float(g[i]) if r[i] < 4.8 else "nan",
+                0.005 if r[i] < 4.8 else "nan", 0.15] for i in range(50)])
+
+
 def plot(folder, exe=None):
     command = [exe, "plot", folder] if exe else ["/usr/bin/python3", SCRIPT, folder]
     result = subprocess.run(command, capture_output=True, text=True, timeout=300)
@@ -301,6 +393,28 @@ def check_pngs(folder, names, context):
     check(not leftovers, f"{context}: temporary files left behind: {leftovers}")
 
 
+def check_animation(folder, snapshots):
+    """The film of an event-driven run: animation.mp4 with ffmpeg, else animation.gif with pillow
+    (one frame per snapshot up to the cap of 100), else none."""
+    try:
+        from PIL import Image
+    except ImportError:
+        Image = None
+    if os.path.exists("/usr/bin/ffmpeg"):
+        path = os.path.join(folder, "animation.mp4")
+        if check(os.path.isfile(path), "animation.mp4 was not written (ffmpeg is there)"):
+            with open(path, "rb") as f:
+                check(f.read(12)[4:8] == b"ftyp", "animation.mp4 is not an MP4 file")
+    elif Image is not None:
+        path = os.path.join(folder, "animation.gif")
+        if check(os.path.isfile(path), "animation.gif was not written (pillow is there)"):
+            with Image.open(path) as film:
+                check(film.format == "GIF" and film.n_frames == min(snapshots, 100),
+                      f"animation.gif: {film.format}, {film.n_frames} frames of {snapshots} snapshots")
+    else:
+        check(not any(n.startswith("animation.") for n in os.listdir(folder)), "a film without ffmpeg or pillow")
+
+
 def pngs_in(folder):
     return sorted(n for n in os.listdir(folder) if n.endswith(".png"))
 
@@ -316,21 +430,28 @@ def main():
         check_pngs(full, RUN_PNGS, "full run folder")
         check(set(pngs_in(full)) == set(RUN_PNGS), f"full run folder: unexpected PNGs {pngs_in(full)}")
         check("wrote" in out and "convection.png" in out, f"full run folder: stdout does not list the PNGs: {out!r}")
+        check(not any(n.startswith("animation.") for n in os.listdir(full)), "a DEM run got an event-driven film")
 
-        # Only an event-driven time series: only timeseries.png, the rest skipped silently.
-        sparse = os.path.join(tmp, "edmd")
-        os.makedirs(sparse)
-        write_csv(os.path.join(sparse, "timeseries.csv"),
-                  ["time", "kinetic_energy", "rotational_energy", "granular_temperature", "collisions",
-                   "wall_collisions", "events", "pressure", "dissipated"],
-                  [[0.1 * k, 1.0, 0.0, 0.5, 100 * k, 10 * k, 300 * k, 2.0, 0.01 * k] for k in range(20)])
-        with open(os.path.join(sparse, "profiles.csv"), "w") as f:
-            f.write("# strip profiles (Campbell 1982 sections 3.1-3.2): 10 samples\n# units: y m\n"
-                    "strip,y,solids_fraction\n0,1,0.5\n1,3,0.4\n")
-        status, out, err = plot(sparse)
-        check(status == 0 and not err.strip(), f"time series only: exit {status}, stderr: {err.strip()}")
-        check(pngs_in(sparse) == ["timeseries.png"], f"time series only: PNGs {pngs_in(sparse)}")
-        check_pngs(sparse, ["timeseries.png"], "time series only")
+        # An event-driven run's files, synthetic with the writers' column names: the Campbell figures.
+        edmd = os.path.join(tmp, "edmd")
+        build_edmd(edmd)
+        status, out, err = plot(edmd)
+        check(status == 0 and not err.strip(), f"edmd folder: exit {status}, stderr: {err.strip()}")
+        check(set(pngs_in(edmd)) == set(EDMD_PNGS), f"edmd folder: PNGs {pngs_in(edmd)}, expected {EDMD_PNGS}")
+        check_pngs(edmd, EDMD_PNGS, "edmd folder")
+        # A strip profile without a column the figures need: named, the other figures still drawn.
+        edit_path = os.path.join(edmd, "profiles.csv")
+        with open(edit_path) as f:
+            text = f.read()
+        with open(edit_path, "w") as f:
+            f.write(text.replace(",plug_flow", ",plug", 1))
+        for name in ("strip_profiles.png", "temperature_components.png"):
+            os.remove(os.path.join(edmd, name))
+        status, _, err = plot(edmd)
+        check(status == 1 and "profiles.csv" in err and "plug_flow" in err,
+              f"edmd folder without plug_flow: exit {status}, stderr: {err.strip()}")
+        check("stresses.png" in pngs_in(edmd) and "strip_profiles.png" not in pngs_in(edmd),
+              f"edmd folder without plug_flow: PNGs {pngs_in(edmd)}")
 
         # Nothing to plot, no folder.
         empty = os.path.join(tmp, "empty")
@@ -402,6 +523,30 @@ def main():
                 check_pngs(real, ["convection.png", "convection_columns.png", "convection_phases.png", "tracer_height.png",
                             "tracer_coordination.png"],
                            "real run")
+
+            # And a real Campbell Couette cell (0.2 s of simulation time on this machine), analysed:
+            # every Campbell figure from the files the event-driven run really writes.
+            couette = os.path.join(tmp, "real_couette")
+            status, _, err = subprocess_run([exe, "run", "cases/campbell1982/couette_noslip.toml", "-o", couette,
+                                             "--quiet", "--set", "output.snapshot_interval=60"])
+            if check(status == 0, f"real Couette run: exit {status}, stderr: {err.strip()}"):
+                status, _, err = subprocess_run([exe, "analyze", couette])
+                check(status == 0, f"grainflow analyze of the Couette run: exit {status}, stderr: {err.strip()}")
+                status, _, err = plot(couette, exe)
+                check(status == 0, f"grainflow plot of the real Couette run: exit {status}, stderr: {err.strip()}")
+                check_pngs(couette, REAL_EDMD_PNGS, "real Couette run")
+                check_animation(couette, len([n for n in os.listdir(os.path.join(couette, "snapshots"))
+                                              if n.endswith(".vtu")]))
+
+            # A real sweep of Couette cells: the members' strip profiles overlaid.
+            couettes = os.path.join(tmp, "real_couette_sweep")
+            status, _, err = subprocess_run([exe, "sweep", "cases/campbell1982/couette_noslip.toml", "--vary",
+                                             "collision.restitution=0.6,0.8", "-o", couettes, "--quiet", "--set",
+                                             "run.duration=1500", "--set", "output.average_start=500"])
+            if check(status == 0, f"real Couette sweep: exit {status}, stderr: {err.strip()}"):
+                status, _, err = plot(couettes, exe)
+                check(status == 0, f"grainflow plot of the Couette sweep: exit {status}, stderr: {err.strip()}")
+                check_pngs(couettes, ["sweep_strip_profiles.png"], "real Couette sweep")
     return finish("test_plot")
 
 

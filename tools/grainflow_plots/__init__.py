@@ -14,22 +14,32 @@ exist in the folder:
   snapshots    snapshots_phases.png                       (Figs. A4.10, A5.10)
   sweep        sweep_*.png of a `grainflow sweep` folder  (Figs. A4.4-A4.9, A4.11, A4.12, A4.23, A4.24)
 
+and of an event-driven run, after Campbell (1982) Chapter 3:
+
+  strips       strip_profiles.png, temperature_components.png  (Figs. 3.1, 3.10-3.16, 3.18-3.19)
+  stresses     stresses.png, collision_angles.png         (section 3.3, Figs. 3.32-3.34)
+  distributions  velocity_distributions.png, pair_distributions.png  (Figs. 3.25-3.29, 3.35-3.39)
+  animation    animation.mp4 (ffmpeg) or .gif (pillow) of snapshots/   (the film of section 2.15)
+
 A malformed input stops only the figures drawn from it (one plotter): the others are still drawn,
 and plot_folder returns the problems, each naming its file.
 """
 
 import os
 
-from . import convection, diffusion, profiles, snapshots, sweep, timeseries, tracers, zone_waves
+from . import (animation, convection, diffusion, distributions, profiles, snapshots, stresses, strips, sweep, timeseries,
+               tracers, zone_waves)
 from .common import PlotError, RunInfo, existing, read_json
 
 PLOTTERS = [profiles.plot, timeseries.plot, diffusion.plot, zone_waves.plot, convection.plot_mean,
-            convection.plot_phase_bins, tracers.plot, snapshots.plot, sweep.plot]
+            convection.plot_phase_bins, tracers.plot, snapshots.plot, sweep.plot, strips.plot, stresses.plot,
+            distributions.plot, animation.plot]
 
 # What makes a folder plottable at all (for the message when nothing is there).
 INPUTS = ["profiles.csv", "timeseries.csv", "analysis/vacf.csv", "analysis/msd.csv",
           "analysis/zone_spectra.csv", "analysis/floor_correlation.csv", "convection.csv",
-          "convection_phases.csv", "tracers.csv", "snapshots/", "sweep.csv"]
+          "convection_phases.csv", "tracers.csv", "snapshots/", "sweep.csv", "stresses.csv",
+          "collision_angles.csv", "analysis/velocity_distributions.csv", "analysis/pair_distributions.csv"]
 
 
 def plot_folder(outdir):

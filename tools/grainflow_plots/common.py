@@ -56,10 +56,11 @@ class Table:
         return len(next(iter(self.columns.values()))) if self.columns else 0
 
 
-def read_table(path, required=()):
+def read_table(path, required=(), text_columns=()):
     """Reads a grainflow CSV ('#' comment lines, one header row, numbers) into a Table. Raises
     PlotError naming the file for a missing column, a short row or a field that is not a number
-    ('nan' and 'inf' are numbers)."""
+    ('nan' and 'inf' are numbers). Columns named in `text_columns` (e.g. walls.csv's face names)
+    are left out unread."""
     try:
         with open(path, newline="") as handle:
             lines = [line for line in handle if line.strip()]
@@ -78,11 +79,13 @@ def read_table(path, required=()):
         if len(row) != len(header):
             raise PlotError(f"{path}: data row {number} has {len(row)} fields, the header has {len(header)}")
         for column, (name, text) in enumerate(zip(header, row)):
+            if name in text_columns:
+                continue
             try:
                 values[column].append(float(text))
             except ValueError as error:
                 raise PlotError(f"{path}: data row {number}, column '{name}': '{text}' is not a number") from error
-    columns = {name: np.asarray(v, dtype=float) for name, v in zip(header, values)}
+    columns = {name: np.asarray(v, dtype=float) for name, v in zip(header, values) if name not in text_columns}
     return Table(path, header, columns, comments)
 
 
@@ -130,6 +133,28 @@ def zone_profiles(outdir):
         return None
     with open(path) as f:
         return None if f.readline().startswith("# strip profiles") else path
+
+
+def strip_profiles(outdir):
+    """profiles.csv of an event-driven run (Campbell's strip profiles, first line "# strip
+    profiles"), else None."""
+    path = existing(outdir, "profiles.csv")
+    if path is None:
+        return None
+    with open(path) as f:
+        return path if f.readline().startswith("# strip profiles") else None
+
+
+def is_edmd(info):
+    """True for an event-driven run folder (summary.json's engine, else strip profiles)."""
+    engine = info.summary.get("engine")
+    return engine == "edmd" if isinstance(engine, str) else strip_profiles(info.outdir) is not None
+
+
+def dimension(info):
+    """2 or 3 from summary.json (2, Campbell's discs, when it does not tell)."""
+    value = info.summary.get("dimension")
+    return value if value in (2, 3) else 2
 
 
 # --- Output -------------------------------------------------------------------------------------

@@ -65,7 +65,8 @@ def snapshot_list(folder):
 
 
 def read_vtu(path):
-    """{'position': [N, 3], 'radius': [N], 'species': [N] or None} of one grainflow VTU file."""
+    """{'position': [N, 3], 'radius': [N], 'species': [N] or None, 'velocity': [N, 3] or None} of one
+    grainflow VTU file."""
     try:
         root = ET.parse(path).getroot()
     except (ET.ParseError, OSError) as error:
@@ -101,7 +102,8 @@ def read_vtu(path):
             raise PlotError(f"{path}: no 'radius' or 'diameter' array")
         radius = 0.5 * diameter
     species = array(data.get("species"), 1)
-    return {"position": position, "radius": radius, "species": None if species is None else species.astype(int)}
+    return {"position": position, "radius": radius, "species": None if species is None else species.astype(int),
+            "velocity": array(data.get("velocity"), 3)}
 
 
 def floor_motion(outdir):

@@ -9,6 +9,9 @@ sweep.csv -> one figure per summary field present, with its error bars (`<field>
     sweep_convection_speed.png (chapter 5).
 <run>/profiles.csv -> sweep_profiles.png: the runs' W(Y) and nu(Y) overlaid (Figs. A4.4, A4.7,
     A4.18, A4.19) and sweep_mass_below.png (Fig. A4.9), each curve labelled by its value.
+<run>/profiles.csv of event-driven runs -> sweep_strip_profiles.png: the runs' nu and translational
+    temperature against y/H (chute) or y/gap (Couette; temperature x (H/U_T)^2) overlaid, e.g.
+    Campbell's (1982) depth series of Fig. 3.10.
 <run>/analysis/diffusion.json -> sweep_diffusion.png: the horizontal diffusion coefficients against
     the granular temperature of the same component (Fig. A4.24; the solids-weighted mean of the
     profile's temperature_x|y|z, else the cell temperature) and against Gamma (Fig. A4.23).
@@ -26,7 +29,7 @@ import numpy as np
 from matplotlib import cm, colors
 
 from .common import (AXES, PlotError, RunInfo, error_bars, existing, number, read_json, read_table,
-                     save_atomically, zone_profiles)
+                     save_atomically, strip_profiles, zone_profiles)
 from .profiles import dense_zones, draw_mass_below, finish_mass_below_axes, mass_below, occupied_zones
 
 # (summary field, y label, file, Lan figure)
@@ -54,6 +57,7 @@ def plot(outdir, info):
     for field, label, name, figure_number in FIELDS:
         written += plot_field(sweep, field, label, name, figure_number)
     written += plot_profiles(sweep)
+    written += plot_strip_profiles(sweep)
     written += plot_diffusion(sweep)
     return written
 
@@ -178,6 +182,39 @@ def member_profiles(sweep):
         if path:
             found.append((label, colour, read_table(path, PROFILE_COLUMNS)))
     return found
+
+
+def plot_strip_profiles(sweep):
+    """nu and the translational temperature of every event-driven member, overlaid."""
+    members = []
+    for row, label, colour in zip(sweep.rows, sweep.labels, run_colours(sweep)):
+        path = strip_profiles(sweep.folder(row))
+        if path:
+            members.append((label, colour, read_table(path, ["y", "solids_fraction", "granular_temperature"])))
+    if not members:
+        return []
+    figure, (left, right) = plt.subplots(1, 2, sharey=True, figsize=(9.0, 6.0))
+    height_label, scaled = "y (m)", all("granular_temperature_scaled" in p for _, _, p in members)
+    for label, colour, profile in members:
+        height = profile["y"]
+        for name, text in (("y_over_H", "y / H"), ("y_over_gap", "y / gap")):
+            if name in profile:
+                height, height_label = profile[name], text
+        temperature = profile["granular_temperature_scaled" if scaled else "granular_temperature"]
+        left.plot(profile["solids_fraction"], height, color=colour, marker="o", markersize=3, label=label)
+        right.plot(temperature, height, color=colour, marker="o", markersize=3, label=label)
+    left.set_xlabel("solids fraction \u03bd")
+    left.set_ylabel(height_label)
+    right.set_xlabel("translational temperature \u27e8v\u2032\u00b2\u27e9/D"
+                     + (" \u00d7 (H/U_T)\u00b2" if scaled else " (m\u00b2/s\u00b2)"))
+    right.legend(loc="best", fontsize=7)
+    for a in (left, right):
+        a.grid(True, alpha=0.3)
+        a.set_xlim(left=0.0)
+    left.set_ylim(bottom=0.0)
+    figure.suptitle(sweep.title("strip profiles (Campbell 1982, e.g. Fig. 3.10)"), fontsize=10)
+    figure.tight_layout()
+    return [save_atomically(figure, os.path.join(sweep.outdir, "sweep_strip_profiles.png"))]
 
 
 def plot_profiles(sweep):
