@@ -8,8 +8,7 @@ packages=(
   libtomlplusplus-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfftw3-dev libhdf5-dev hdf5-tools
-  python3-matplotlib python3-numpy python3-h5py
-  ffmpeg
+  python3-matplotlib python3-numpy python3-h5py python3-pil
 )
 
 missing=()
