@@ -5,6 +5,7 @@ folder. Each script imports this module by putting its own folder on sys.path, s
 """
 import csv
 import os
+import re
 import subprocess
 import sys
 
@@ -44,6 +45,19 @@ def read_csv(path):
     """The rows of an output CSV file as dicts, its '#' comment lines skipped."""
     with open(path) as f:
         return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def sweep_commands(path):
+    """The `grainflow sweep ...` commands written in a case's header comment."""
+    commands = []
+    with open(path) as handle:
+        for line in handle:
+            if not line.startswith("#"):
+                break
+            found = re.search(r"grainflow sweep .*", line)
+            if found:
+                commands.append(found.group(0).strip())
+    return commands
 
 
 def finish(name):

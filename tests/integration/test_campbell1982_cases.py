@@ -9,31 +9,17 @@ Usage: /usr/bin/python3 tests/integration/test_campbell1982_cases.py PATH_TO_gra
 """
 import glob
 import os
-import re
 import shlex
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gftest import check, executable_from_argv, finish, run  # noqa: E402
+from gftest import check, executable_from_argv, finish, run, sweep_commands  # noqa: E402
 
 # 20 time units: a few hundred collisions in the 2D cells, enough to exercise walls, servo and averaging
 # (from t = 10), a few seconds in all.
 SHORT = ["--set", "run.duration=20.0", "--set", "output.average_start=10.0"]
 LENGTH_KEYS = ("run.duration=", "output.average_start=")
-
-
-def sweep_commands(path):
-    """The `grainflow sweep ...` commands written in a case's header comment."""
-    commands = []
-    with open(path) as handle:
-        for line in handle:
-            if not line.startswith("#"):
-                break
-            found = re.search(r"grainflow sweep .*", line)
-            if found:
-                commands.append(found.group(0).strip())
-    return commands
 
 
 def short_sweep_args(command):

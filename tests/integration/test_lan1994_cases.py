@@ -9,28 +9,14 @@ Usage: /usr/bin/python3 tests/integration/test_lan1994_cases.py PATH_TO_grainflo
 """
 import glob
 import os
-import re
 import shlex
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gftest import check, executable_from_argv, finish, run  # noqa: E402
+from gftest import check, executable_from_argv, finish, run, sweep_commands  # noqa: E402
 
 SHORT = "run.duration=0.003"  # >= 70 steps of the largest time step among the cases (4.2e-5 s)
-
-
-def sweep_commands(path):
-    """The `grainflow sweep ...` commands written in a case's header comment."""
-    commands = []
-    with open(path) as handle:
-        for line in handle:
-            if not line.startswith("#"):
-                break
-            found = re.search(r"grainflow sweep .*", line)
-            if found:
-                commands.append(found.group(0).strip())
-    return commands
 
 
 def main():
