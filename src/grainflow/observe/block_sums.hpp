@@ -3,6 +3,8 @@
 // neighbours merge pairwise and the block length doubles, so memory stays bounded however long the
 // run. The standard error of an average then comes from Flyvbjerg-Petersen blocking of its
 // per-block values (analysis/block_average). `Sums` needs a default state of zero and `+=`.
+// A sample may carry a weight (e.g. the duration of the interval it sums, for rates); each block
+// keeps the total weight of its samples.
 #pragma once
 
 #include <cstddef>
@@ -23,31 +25,40 @@ class BlockSums {
  public:
   static constexpr std::size_t kMaxBlocks = kMaxErrorBlocks;
 
-  // One sample's sums, one per bin (the bin count is fixed by the first sample).
-  void add(const std::vector<Sums>& sample) {
+  // One sample's sums, one per bin (the bin count is fixed by the first sample), and its weight.
+  void add(const std::vector<Sums>& sample, double weight = 1.0) {
     if (open_.empty()) open_.assign(sample.size(), Sums{});
     for (std::size_t b = 0; b < sample.size(); ++b) open_[b] += sample[b];
+    open_weight_ += weight;
     if (++open_samples_ < block_length_) return;
     blocks_.push_back(std::move(open_));
+    weights_.push_back(open_weight_);
     open_.assign(sample.size(), Sums{});
+    open_weight_ = 0.0;
     open_samples_ = 0;
     if (blocks_.size() < kMaxBlocks) return;
     for (std::size_t b = 0; b < kMaxBlocks / 2; ++b) {
       std::vector<Sums> merged = std::move(blocks_[2 * b]);  // (b = 0 would self-move)
       for (std::size_t bin = 0; bin < merged.size(); ++bin) merged[bin] += blocks_[2 * b + 1][bin];
       blocks_[b] = std::move(merged);
+      weights_[b] = weights_[2 * b] + weights_[2 * b + 1];
     }
     blocks_.resize(kMaxBlocks / 2);
+    weights_.resize(kMaxBlocks / 2);
     block_length_ *= 2;
   }
 
   // The full blocks, oldest first: blocks()[k][bin] sums block_length() samples.
   const std::vector<std::vector<Sums>>& blocks() const { return blocks_; }
   long block_length() const { return block_length_; }
+  // The total weight of each full block's samples (the block length without weights).
+  const std::vector<double>& block_weights() const { return weights_; }
 
  private:
   std::vector<std::vector<Sums>> blocks_;
+  std::vector<double> weights_;
   std::vector<Sums> open_;
+  double open_weight_ = 0.0;
   long block_length_ = 1, open_samples_ = 0;
 };
 

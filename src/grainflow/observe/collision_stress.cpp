@@ -40,7 +40,6 @@ StressProfile::StressProfile(int strips, double period)
       period_(period),
       total_(strips),
       interval_(strips),
-      blocks_(strips),
       momentum_start_(strips),
       momentum_end_(strips) {}
 
@@ -149,6 +148,7 @@ std::vector<StripStress> StressProfile::averages(const Vec3& gravity, const Vec3
   std::vector<StripStress> out(strips_);
   const double span = elapsed();
   const auto& blocks = blocks_.blocks();
+  const auto& durations = blocks_.block_weights();
   for (int k = 0; k < strips_; ++k) {
     StripStress& a = out[k];
     a.lo = lo_ + k * thickness_;
@@ -171,16 +171,16 @@ std::vector<StripStress> StressProfile::averages(const Vec3& gravity, const Vec3
     for (int c = 0; c < 9; ++c) a.total[c] = a.collisional[c] + a.kinetic[c];
     for (int c = 0; c < 9; ++c) {
       std::vector<double> coll, kin, tot;
-      for (const auto& b : blocks) {
-        const double cb = b.sums[k].collisional[c] / b.duration;
-        const double kb = kinetic_of(b.sums[k], b.intervals, u)[c];
+      for (std::size_t b = 0; b < blocks.size(); ++b) {
+        const double cb = blocks[b][k].collisional[c] / durations[b];
+        const double kb = kinetic_of(blocks[b][k], blocks_.block_length(), u)[c];
         coll.push_back(cb);
         kin.push_back(kb);
         tot.push_back(cb + kb);
       }
-      a.collisional_error[c] = BlockSeries<Sums>::error(coll);
-      a.kinetic_error[c] = BlockSeries<Sums>::error(kin);
-      a.total_error[c] = BlockSeries<Sums>::error(tot);
+      a.collisional_error[c] = blocked_standard_error(coll);
+      a.kinetic_error[c] = blocked_standard_error(kin);
+      a.total_error[c] = blocked_standard_error(tot);
     }
     a.collision_rate = s.collisions / span;
     a.number = s.number / samples_;

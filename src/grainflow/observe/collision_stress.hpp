@@ -26,7 +26,7 @@
 
 #include "grainflow/core/vec3.hpp"
 #include "grainflow/edmd/collision_observer.hpp"
-#include "grainflow/observe/block_series.hpp"
+#include "grainflow/observe/block_sums.hpp"
 #include "grainflow/observe/strip_grid.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
@@ -102,7 +102,7 @@ class StressProfile {
   double start_time_ = 0.0, last_time_ = 0.0;
   long samples_ = 0;
   std::vector<Sums> total_, interval_;
-  BlockSeries<Sums> blocks_;
+  BlockSums<Sums> blocks_;  // per interval, weighted by its duration
   std::vector<Vec3> momentum_start_, momentum_end_;  // kg m/s per strip
   double thickness_ = 0.0, measure_ = 0.0, lo_ = 0.0;  // the strips at the last sample: m, m^D, m
 };

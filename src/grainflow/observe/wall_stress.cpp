@@ -15,7 +15,7 @@ WallLoads::Sums& WallLoads::Sums::operator+=(const Sums& o) {
 }
 
 WallLoads::WallLoads(const std::vector<edmd::EdmdWall>& walls)
-    : total_(walls.size()), interval_(walls.size()), blocks_(walls.size()) {
+    : total_(walls.size()), interval_(walls.size()) {
   for (const auto& w : walls) {
     axis_.push_back(w.axis);
     inward_.push_back(w.inward);
@@ -69,13 +69,14 @@ std::vector<WallLoad> WallLoads::averages() const {
     a.collision_rate = s.collisions / elapsed_;
     a.dissipation_rate = s.dissipated / elapsed_;
     std::vector<double> normal, shear;
-    for (const auto& b : blocks_.blocks()) {
-      const Vec3 row = row_of(static_cast<int>(w), (b.sums[w].impulse + b.sums[w].rolling) * (1.0 / b.duration));
+    const auto& blocks = blocks_.blocks();
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const Vec3 row = row_of(static_cast<int>(w), (blocks[b][w].impulse + blocks[b][w].rolling) * (1.0 / blocks_.block_weights()[b]));
       normal.push_back(row[n]);
       shear.push_back(row[f]);
     }
-    a.normal_stress_error = BlockSeries<Sums>::error(normal);
-    a.shear_stress_error = BlockSeries<Sums>::error(shear);
+    a.normal_stress_error = blocked_standard_error(normal);
+    a.shear_stress_error = blocked_standard_error(shear);
   }
   return out;
 }

@@ -15,7 +15,7 @@
 #include "grainflow/core/vec3.hpp"
 #include "grainflow/edmd/collision_observer.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
-#include "grainflow/observe/block_series.hpp"
+#include "grainflow/observe/block_sums.hpp"
 
 namespace grainflow::observe {
 
@@ -61,7 +61,7 @@ class WallLoads {
   std::vector<int> axis_;
   std::vector<double> inward_;
   std::vector<Sums> total_, interval_;
-  BlockSeries<Sums> blocks_;
+  BlockSums<Sums> blocks_;  // per interval, weighted by its duration
   double elapsed_ = 0.0;
 };
 
