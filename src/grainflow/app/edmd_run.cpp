@@ -103,9 +103,8 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
     rows.push_back(row);
   };
 
-  // Stresses, wall loads and collision angles from the collisions, sampled every profile_interval.
+  // Stresses, wall loads and collision angles from the collisions, sampled with the strip profiles.
   std::optional<EdmdCollisionOutputs> collision_outputs;
-  const double sample_interval = c.output.profile_interval > 0.0 ? c.output.profile_interval : c.output.interval / 10.0;
 
   const double end_time = c.run.duration;
   try {
@@ -115,24 +114,22 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
           if (snapshots) snapshots->add(e.state().particles, e.state().time);
           if (c.output.collision_stresses) collision_outputs.emplace(c, e.state());
           // Rows, snapshots and samples each on their own exact grid k * interval: advance to whichever is next.
-          long row = 1, shot = 1, sample = 1;
+          long row = 1, shot = 1;
           try {
             while (true) {
               const double next_row = std::min(end_time, row * c.output.interval);
               const double next_shot = snapshots ? shot * c.output.snapshot_interval : kNeverTime;
-              const double next_sample = collision_outputs ? sample * sample_interval : kNeverTime;
               const double next_state = trajectory ? trajectory->next_time() : kNeverTime;
-              const double t = std::min({next_row, next_shot, next_sample, profiles.next_time(), next_state});
+              const double t = std::min({next_row, next_shot, profiles.next_time(), next_state});
               e.advance_to(t);
-              if (profiles.next_time() <= t) profiles.sample(e.state(), e.counters().collisions);
+              if (profiles.next_time() <= t) {  // every output.profile_interval
+                profiles.sample(e.state(), e.counters().collisions);
+                if (collision_outputs) collision_outputs->sample(e);
+              }
               if (trajectory && next_state <= t) trajectory->sample(e.state());
               if (snapshots && next_shot <= t) {
                 snapshots->add(e.state().particles, e.state().time);
                 ++shot;
-              }
-              if (collision_outputs && next_sample <= t) {
-                collision_outputs->sample(e);
-                ++sample;
               }
               if (next_row > t) continue;
               ++row;
