@@ -1,4 +1,5 @@
 #include "grainflow/analysis/diffusion.hpp"
+#include "grainflow/analysis/least_squares_line.hpp"
 
 #include <cmath>
 #include <numeric>
@@ -30,24 +31,14 @@ MsdFit diffusion_from_msd(std::span<const double> msd, double sample_interval, s
   require(dimensions >= 1, "diffusion_from_msd: dimensions must be at least 1");
   require(first_lag < last_lag && last_lag < msd.size(),
           "diffusion_from_msd: the window needs first_lag < last_lag < msd.size()");
-  // Least squares in lag units centred on the window's mid-lag, which keeps the normal equations
-  // well conditioned for long windows.
-  const double count = static_cast<double>(last_lag - first_lag + 1);
-  const double mid = 0.5 * static_cast<double>(first_lag + last_lag);
-  double mean_y = 0.0;
-  for (std::size_t k = first_lag; k <= last_lag; ++k) mean_y += msd[k];
-  mean_y /= count;
-  double sxy = 0.0, sxx = 0.0;
-  for (std::size_t k = first_lag; k <= last_lag; ++k) {
-    const double u = static_cast<double>(k) - mid;
-    sxy += u * (msd[k] - mean_y);
-    sxx += u * u;
-  }
+  std::vector<double> lag_time;
+  for (std::size_t k = first_lag; k <= last_lag; ++k) lag_time.push_back(static_cast<double>(k) * sample_interval);
+  const LeastSquaresLine line = fit_least_squares_line(lag_time, msd.subspan(first_lag, last_lag - first_lag + 1));
   MsdFit fit;
   fit.first_lag = first_lag;
   fit.last_lag = last_lag;
-  fit.slope = sxy / sxx / sample_interval;
-  fit.intercept = mean_y - fit.slope * mid * sample_interval;
+  fit.slope = line.slope;
+  fit.intercept = line.intercept;
   fit.coefficient = fit.slope / (2.0 * dimensions);
   return fit;
 }

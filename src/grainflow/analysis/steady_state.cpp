@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "grainflow/analysis/block_average.hpp"
+#include "grainflow/analysis/least_squares_line.hpp"
 
 namespace grainflow::analysis {
 namespace {
@@ -23,15 +24,11 @@ struct Line {
 };
 
 Line fit_line(std::span<const double> t, std::span<const double> x) {
-  const double t_mean = mean_of(t), x_mean = mean_of(x);
+  const LeastSquaresLine fit = fit_least_squares_line(t, x);
   Line line;
-  double stx = 0.0;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    line.stt += (t[i] - t_mean) * (t[i] - t_mean);
-    stx += (t[i] - t_mean) * (x[i] - x_mean);
-  }
-  line.slope = stx / line.stt;
-  for (std::size_t i = 0; i < t.size(); ++i) line.residual.push_back(x[i] - x_mean - line.slope * (t[i] - t_mean));
+  line.slope = fit.slope;
+  line.stt = fit.sxx;
+  for (std::size_t i = 0; i < t.size(); ++i) line.residual.push_back(x[i] - fit.at(t[i]));
   return line;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "grainflow/observe/strip_grid.hpp"
+#include "grainflow/analysis/least_squares_line.hpp"
 
 namespace grainflow::analysis {
 namespace {
@@ -54,18 +55,13 @@ void components_of(const StateSamples& s, std::size_t t, std::size_t i, double q
 
 // Least-squares slope of the strip means of u against the strip centres.
 double fitted_slope(const std::vector<StripMoments>& strips, int first, int last) {
-  double n = 0.0, sy = 0.0, su = 0.0, syy = 0.0, syu = 0.0;
+  std::vector<double> y, u, used;  // strips without particles weigh nothing
   for (int k = first; k <= last; ++k) {
-    const auto& m = strips[k];
-    if (m.count == 0) continue;
-    n += 1.0;
-    sy += m.centre;
-    su += m.mean[kU];
-    syy += m.centre * m.centre;
-    syu += m.centre * m.mean[kU];
+    y.push_back(strips[k].centre);
+    u.push_back(strips[k].count == 0 ? 0.0 : strips[k].mean[kU]);
+    used.push_back(strips[k].count == 0 ? 0.0 : 1.0);
   }
-  const double denominator = n * syy - sy * sy;
-  return n >= 2.0 && denominator > 0.0 ? (n * syu - sy * su) / denominator : 0.0;
+  return fit_least_squares_line(y, u, used).slope;
 }
 
 }  // namespace

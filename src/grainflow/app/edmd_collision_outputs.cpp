@@ -7,6 +7,7 @@
 #include "grainflow/analysis/savage_jeffrey.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "grainflow/io/atomic_file.hpp"
+#include "grainflow/analysis/least_squares_line.hpp"
 
 namespace grainflow::app {
 namespace {
@@ -84,20 +85,18 @@ template void EdmdCollisionOutputs::finish(edmd::EdmdEngine<3>&);
 // least-squares line through the strips' mean u_x, <v'^2> the mass-weighted mean of P_yy(kinetic)/rho.
 // A single number suits a Couette cell's linear profile; for a chute it is only a rough average.
 double EdmdCollisionOutputs::shear_parameter(const std::vector<observe::StripStress>& strips) const {
-  double w = 0.0, wy = 0.0, wu = 0.0, wyy = 0.0, wyu = 0.0, kinetic = 0.0;
+  std::vector<double> y, u, mass;
+  double kinetic = 0.0;
   for (const auto& s : strips) {
     if (!(s.mass_density > 0.0)) continue;
-    const double y = 0.5 * (s.lo + s.hi), u = s.mean_velocity.x, m = s.mass_density;
-    w += m;
-    wy += m * y;
-    wu += m * u;
-    wyy += m * y * y;
-    wyu += m * y * u;
+    y.push_back(0.5 * (s.lo + s.hi));
+    u.push_back(s.mean_velocity.x);
+    mass.push_back(s.mass_density);
     kinetic += s.kinetic[4];  // yy
   }
-  const double spread = w * wyy - wy * wy;
-  if (!(w > 0.0) || !(spread > 0.0)) return 0.0;
-  const double shear_rate = (w * wyu - wy * wu) / spread;
+  const analysis::LeastSquaresLine line = analysis::fit_least_squares_line(y, u, mass);
+  if (!(line.sxx > 0.0)) return 0.0;
+  const double w = line.weight, shear_rate = line.slope;
   double radius = 0.0;
   for (double r : state_->particles.radius) radius += r;
   radius /= std::max<std::size_t>(1, state_->particles.size());
