@@ -88,3 +88,36 @@ TEST(StripGrid, BranchVectorSharesAreLengthFractions) {
   grid.for_each_segment_part(-1.0, 1.0, [&](int, double f) { outside += f; });
   EXPECT_NEAR(outside, 0.5, 1e-15);
 }
+
+TEST(StripGrid, PeriodicSeamSplitsAParticleBetweenTheEndStrips) {
+  // Strips spanning a periodic box [0, 10) in 5 strips of 2: a unit disc centred 0.3 above the seam
+  // lies 0.7 below it, i.e. a bottom segment of height 0.7 belongs to the top strip (its image at
+  // 10.3 reaches down to 9.3); the shares sum to the whole disc, as in the bulk. Without the period
+  // that segment is lost.
+  StripGrid grid(2, 1, 0.0, 10.0, 5, 1.0);
+  grid.set_period(10.0);
+  double top = 0.0, bottom = 0.0, total = 0.0;
+  grid.for_each_overlap(0.3, 1.0, [&](int k, double part, double fraction) {
+    (k == 4 ? top : bottom) += part;
+    total += fraction;
+    EXPECT_TRUE(k == 0 || k == 4) << k;
+  });
+  EXPECT_NEAR(top, segment_area(1.0, 0.7), 1e-13);
+  EXPECT_NEAR(bottom, M_PI - segment_area(1.0, 0.7), 1e-13);
+  EXPECT_NEAR(total, 1.0, 1e-14);
+  // The same from above the seam: a sphere centred at 9.8 of radius 0.5 puts its top cap (height
+  // 0.3) into strip 0.
+  StripGrid spheres(3, 1, 0.0, 10.0, 5, 1.0);
+  spheres.set_period(10.0);
+  double cap = 0.0, sum = 0.0;
+  spheres.for_each_overlap(9.8, 0.5, [&](int k, double part, double fraction) {
+    if (k == 0) cap += part;
+    sum += fraction;
+  });
+  EXPECT_NEAR(cap, M_PI * 0.3 * 0.3 * (3 * 0.5 - 0.3) / 3.0, 1e-14);  // spherical cap pi h^2 (3r - h) / 3
+  EXPECT_NEAR(sum, 1.0, 1e-14);
+  StripGrid open(2, 1, 0.0, 10.0, 5, 1.0);
+  double open_total = 0.0;
+  open.for_each_overlap(0.3, 1.0, [&](int, double, double fraction) { open_total += fraction; });
+  EXPECT_NEAR(open_total, 1.0 - segment_area(1.0, 0.7) / M_PI, 1e-14);
+}

@@ -36,7 +36,9 @@ class EdmdStrips {
     const auto [lo, hi] = bounds(s, t);
     double cross_section = s.box.length(0);
     if (dimension_ == 3) cross_section *= s.box.length(2);
-    return observe::StripGrid(dimension_, kAxis, lo, hi, count_, cross_section);
+    observe::StripGrid grid(dimension_, kAxis, lo, hi, count_, cross_section);
+    if (top_ < 0 && bottom_ < 0 && s.box.periodic[kAxis]) grid.set_period(s.box.length(kAxis));
+    return grid;
   }
 
   bool between_walls() const { return top_ >= 0; }

@@ -3,6 +3,8 @@
 // with the pressure servo (then call follow() before each use). A particle counts in each strip with
 // the exact share of its area (discs) or volume (spheres) lying there; a collision's branch vector
 // counts with the share of its length lying there (the stress carried across by the collision).
+// Along a periodic axis (Lees-Edwards) the strips span exactly one period and a particle straddling
+// the seam counts in the strips at both ends (set_period).
 #pragma once
 
 #include <algorithm>
@@ -29,6 +31,10 @@ class StripGrid {
     thickness_ = (hi - lo) / count_;
   }
 
+  // The box's period along the axis, when the strips span it exactly; 0: not periodic.
+  void set_period(double period) { period_ = period; }
+  double period() const { return period_; }
+
   int dimension() const { return dimension_; }
   int axis() const { return axis_; }
   int count() const { return count_; }
@@ -51,11 +57,10 @@ class StripGrid {
   template <class Visit>
   void for_each_overlap(double centre, double radius, Visit&& visit) const {
     const double whole = dimension_ == 2 ? M_PI * radius * radius : 4.0 / 3.0 * M_PI * radius * radius * radius;
-    const int first = std::max(0, static_cast<int>(std::floor((centre - radius - lo_) / thickness_)));
-    const int last = std::min(count_ - 1, static_cast<int>(std::floor((centre + radius - lo_) / thickness_)));
-    for (int k = first; k <= last; ++k) {
-      const double part = particle_slab_measure(dimension_, radius, centre, strip_lo(k), strip_lo(k) + thickness_);
-      if (part > 0.0) visit(k, part, part / whole);
+    overlap_at(centre, radius, whole, visit);
+    if (period_ > 0.0) {  // the part beyond the seam, counted at the other end
+      if (centre - radius < lo_) overlap_at(centre + period_, radius, whole, visit);
+      if (centre + radius > hi_) overlap_at(centre - period_, radius, whole, visit);
     }
   }
 
@@ -77,8 +82,18 @@ class StripGrid {
   }
 
  private:
+  template <class Visit>
+  void overlap_at(double centre, double radius, double whole, Visit& visit) const {
+    const int first = std::max(0, static_cast<int>(std::floor((centre - radius - lo_) / thickness_)));
+    const int last = std::min(count_ - 1, static_cast<int>(std::floor((centre + radius - lo_) / thickness_)));
+    for (int k = first; k <= last; ++k) {
+      const double part = particle_slab_measure(dimension_, radius, centre, strip_lo(k), strip_lo(k) + thickness_);
+      if (part > 0.0) visit(k, part, part / whole);
+    }
+  }
+
   int dimension_, axis_, count_;
-  double lo_ = 0.0, hi_ = 0.0, thickness_ = 0.0, cross_section_ = 0.0;
+  double lo_ = 0.0, hi_ = 0.0, thickness_ = 0.0, cross_section_ = 0.0, period_ = 0.0;
 };
 
 }  // namespace grainflow::observe
