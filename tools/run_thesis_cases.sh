@@ -2,7 +2,8 @@
 # Runs the bundled studies of one thesis (cases/THESIS/) at full length: a case whose header has
 # `grainflow sweep` commands runs as those sweeps, any other as one run. Then `grainflow analyze`
 # where a run sampled trajectories or zone series, `grainflow theory` where the kinetic theory of a
-# shaken bed applies, and `grainflow plot` on every run and sweep folder. Results: runs/THESIS/.
+# shaken bed applies, and `grainflow plot` on every run and sweep folder; for event-driven runs the
+# table of constitutive functions (`grainflow constitutive`) and its figures. Results: runs/THESIS/.
 # Usage: tools/run_thesis_cases.sh THESIS "ALL STUDIES" [STUDY...]   (tools/run_lan1994.sh and
 # tools/run_campbell1982.sh call it with their lists). Environment: GRAINFLOW (default
 # build/release/grainflow), GRAINFLOW_JOBS (parallel sweep runs, default 2).
@@ -44,4 +45,8 @@ for dir in $(find "$OUT" -name summary.json -printf '%h\n' | sort); do
   "$G" plot "$dir" > /dev/null || echo "   (plot of $dir failed)"
 done
 for dir in $(find "$OUT" -name sweep.csv -printf '%h\n' | sort); do "$G" plot "$dir" > /dev/null || true; done
+# Event-driven runs: their constitutive functions over all strips and runs (Campbell's Figs. 3.5, 3.21-3.24).
+if [ -n "$(find "$OUT" -name constitutive.csv -print -quit)" ]; then
+  "$G" constitutive "$OUT" && "$G" plot "$OUT" > /dev/null || echo "   (constitutive table of $OUT failed)"
+fi
 echo "results in $OUT/"

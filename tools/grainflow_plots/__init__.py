@@ -19,6 +19,8 @@ and of an event-driven run, after Campbell (1982) Chapter 3:
   strips       strip_profiles.png, temperature_components.png  (Figs. 3.1, 3.10-3.16, 3.18-3.19)
   stresses     stresses.png, collision_angles.png         (section 3.3, Figs. 3.32-3.34)
   distributions  velocity_distributions.png, pair_distributions.png  (Figs. 3.25-3.29, 3.35-3.39)
+  constitutive   constitutive_chi.png, constitutive_f.png of constitutive.csv or of the table
+                 `grainflow constitutive` collects over runs   (Figs. 3.5, 3.21-3.24)
   animation    animation.mp4 (ffmpeg) or .gif (pillow) of snapshots/   (the film of section 2.15)
 
 A malformed input stops only the figures drawn from it (one plotter): the others are still drawn,
@@ -27,19 +29,20 @@ and plot_folder returns the problems, each naming its file.
 
 import os
 
-from . import (animation, convection, diffusion, distributions, profiles, snapshots, stresses, strips, sweep, timeseries,
-               tracers, zone_waves)
+from . import (animation, constitutive, convection, diffusion, distributions, profiles, snapshots, stresses, strips, sweep,
+               timeseries, tracers, zone_waves)
 from .common import PlotError, RunInfo, existing, read_json
 
 PLOTTERS = [profiles.plot, timeseries.plot, diffusion.plot, zone_waves.plot, convection.plot_mean,
             convection.plot_phase_bins, tracers.plot, snapshots.plot, sweep.plot, strips.plot, stresses.plot,
-            distributions.plot, animation.plot]
+            distributions.plot, constitutive.plot, animation.plot]
 
 # What makes a folder plottable at all (for the message when nothing is there).
 INPUTS = ["profiles.csv", "timeseries.csv", "analysis/vacf.csv", "analysis/msd.csv",
           "analysis/zone_spectra.csv", "analysis/floor_correlation.csv", "convection.csv",
           "convection_phases.csv", "tracers.csv", "snapshots/", "sweep.csv", "stresses.csv",
-          "collision_angles.csv", "analysis/velocity_distributions.csv", "analysis/pair_distributions.csv"]
+          "collision_angles.csv", "analysis/velocity_distributions.csv", "analysis/pair_distributions.csv", "constitutive.csv",
+          "constitutive_table.csv"]
 
 
 def plot_folder(outdir):

@@ -103,16 +103,21 @@ double EdmdCollisionOutputs::shear_parameter(const std::vector<observe::StripStr
   return analysis::savage_jeffrey_shear_parameter(radius, shear_rate, kinetic / w);
 }
 
+std::vector<observe::StripStress> EdmdCollisionOutputs::strip_stresses() const {
+  const std::vector<observe::WallLoad> loads = walls_.averages();
+  Vec3 top_row;  // P_y. at the top of the strips: the top wall's, or zero at a free surface
+  for (std::size_t w = 0; w < loads.size(); ++w)
+    if (strips_.between_walls() && state_->walls[w].face == 3) top_row = loads[w].row;
+  return stress_.averages(state_->gravity, top_row);
+}
+
 void EdmdCollisionOutputs::write(const std::string& dir, io::JsonObject& summary,
                                  std::vector<std::string>& warnings) const {
   if (!started_ || stress_.samples() == 0)
     warnings.push_back("stresses.csv, walls.csv, collision_angles.csv: no averaging interval completed after "
                        "output.average_start (and output.average_start_collisions); their values are nan");
   const std::vector<observe::WallLoad> loads = walls_.averages();
-  Vec3 top_row;  // P_y. at the top of the strips: the top wall's, or zero at a free surface
-  for (std::size_t w = 0; w < loads.size(); ++w)
-    if (strips_.between_walls() && state_->walls[w].face == 3) top_row = loads[w].row;
-  const auto strips = stress_.averages(state_->gravity, top_row);
+  const auto strips = strip_stresses();
   const double s = shear_parameter(strips);
   write_stresses(dir + "/stresses.csv", strips);
   write_walls(dir + "/walls.csv", loads);

@@ -40,6 +40,9 @@ class EdmdCollisionOutputs final : public edmd::CollisionObserver {
   void on_wall(const edmd::WallCollision& c) override;
 
   void write(const std::string& dir, io::JsonObject& summary, std::vector<std::string>& warnings) const;
+  // The long-term stress averages per strip (the weight integral starting from the top wall's load
+  // in a Couette cell, from zero at a chute's free surface).
+  std::vector<observe::StripStress> strip_stresses() const;
 
  private:
   double wall_area(int wall) const;  // m^(D-1), now

@@ -144,6 +144,15 @@ void EdmdProfiles::derive_chute(const std::vector<observe::StripAverages>& strip
   d.slip = strips.front().value[u] - wall_speed;
 }
 
+std::vector<StripKinematics> EdmdProfiles::strip_kinematics() const {
+  const auto strips = profile_.averages();
+  Derived d;
+  derive_strips(strips, d);
+  std::vector<StripKinematics> result;
+  for (std::size_t k = 0; k < strips.size(); ++k) result.push_back({strips[k], d.du_dy[k], d.du_dy_error[k], d.plug[k] != 0.0});
+  return result;
+}
+
 void EdmdProfiles::write(const std::string& dir, io::JsonObject& summary, std::vector<std::string>& warnings) const {
   using namespace observe::strip;
   const auto strips = profile_.averages();

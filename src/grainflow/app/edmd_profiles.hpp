@@ -19,6 +19,13 @@
 
 namespace grainflow::app {
 
+// One strip's long-term averages with the velocity gradient fitted across the strips.
+struct StripKinematics {
+  observe::StripAverages averages;
+  double du_dy = 0.0, du_dy_error = 0.0;  // 1/s
+  bool plug_flow = false;
+};
+
 class EdmdProfiles {
  public:
   EdmdProfiles(const CaseConfig& c, const edmd::EdmdState& s);
@@ -33,6 +40,9 @@ class EdmdProfiles {
 
   // profiles.csv in `dir`, and the scalars into `summary`; `warnings` gets what the user should know.
   void write(const std::string& dir, io::JsonObject& summary, std::vector<std::string>& warnings) const;
+  // The strips' averages as profiles.csv has them.
+  std::vector<StripKinematics> strip_kinematics() const;
+  long samples() const { return profile_.samples(); }
 
  private:
   struct Derived;  // du/dy, S and plug flow per strip; chute and Couette scalars

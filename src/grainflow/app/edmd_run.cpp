@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "grainflow/app/edmd_collision_outputs.hpp"
+#include "grainflow/app/edmd_constitutive_output.hpp"
 #include "grainflow/app/edmd_profiles.hpp"
 #include "grainflow/app/edmd_trajectory_output.hpp"
 #include "grainflow/app/run_support.hpp"
@@ -225,6 +226,12 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
           collision_outputs->write(dir, summary, warnings);
         }
         profiles.write(dir, summary, warnings);
+        if (collision_outputs && profiles.samples() > 0) {
+          bool wall_below = false, wall_above = false;
+          for (const auto& w : e.state().walls) wall_below |= w.face == 2, wall_above |= w.face == 3;
+          write_constitutive(dir + "/constitutive.csv", c, dim, profiles.strip_kinematics(),
+                             collision_outputs->strip_stresses(), wall_below, wall_above);
+        }
         std::vector<double> row_time, row_energy;
         for (const auto& r : rows) row_time.push_back(r.time), row_energy.push_back(r.global.kinetic_energy);
         const double began = std::isfinite(profiles.first_sample_time()) ? profiles.first_sample_time() : c.output.average_start;

@@ -9,6 +9,7 @@
 #include "grainflow/app/analyze_command.hpp"
 #include "grainflow/app/calibrate_command.hpp"
 #include "grainflow/app/check_command.hpp"
+#include "grainflow/app/constitutive_command.hpp"
 #include "grainflow/app/dem_run.hpp"
 #include "grainflow/app/edmd_run.hpp"
 #include "grainflow/app/sweep_command.hpp"
@@ -143,6 +144,14 @@ int main(int argc, char** argv) {
   theory->add_option("--g0", theory_options.contact_value, "radial distribution at contact (default torquato)")
       ->check(CLI::IsMember({"torquato", "carnahan_starling"}));
 
+  // grainflow constitutive: chi(nu), f_s(nu), f_N(nu) over strips and runs (app/constitutive_command.hpp).
+  app::ConstitutiveOptions constitutive_options;
+  auto* constitutive = app.add_subcommand(
+      "constitutive", "collect the event-driven runs' constitutive.csv (chi, f_s, f_N per strip) into one table");
+  constitutive->add_option("folders", constitutive_options.folders, "run or sweep folders, searched recursively")->required();
+  constitutive->add_option("-o,--output", constitutive_options.output,
+                           "CSV file (default: constitutive_table.csv in the first folder)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -161,6 +170,7 @@ int main(int argc, char** argv) {
       return app::analyze_run(analyze_dir, analyze_options);
     }
     if (app.got_subcommand("theory")) return app::run_theory(theory_options);
+    if (app.got_subcommand("constitutive")) return app::collect_constitutive(constitutive_options);
     if (app.got_subcommand("sweep")) return app::run_sweep(sweep_options, std::vector<std::string>(argv, argv + argc));
     if (app.got_subcommand("calibrate")) {
       if (*duration_option) calibrate_options.duration = calibrate_duration;
