@@ -8,7 +8,8 @@ constitutive`, constitutive_chi.png; OUTPUTS.md, Campbell 1982 sections 3.1.1 an
   these densities, 0.3-0.5%, with finite-size effects of O(1/N)) plus 3 of the strip's standard
   errors; no strip is against a wall, so all count for chi.
 - `grainflow constitutive ROOT` gathers both runs' files into ROOT/constitutive_table.csv: one row
-  per strip of each run, the run's folder first; `grainflow plot ROOT` draws constitutive_chi.png
+  per strip of each run, the run's folder first, then whether it was averaged once steady (an
+  elastic gas is steady from the start); `grainflow plot ROOT` draws constitutive_chi.png
   from it (and no f figure: a gas at rest has no resolved shear rate).
 - A folder without any constitutive.csv, a missing folder, and a file whose columns differ are
   refused with exit status 2, naming the folder or file, before anything is written.
@@ -54,7 +55,7 @@ restitution = 1.0
 duration = {duration}
 
 [output]
-interval = 10.0
+interval = 2.0
 average_start = 10.0
 profile_interval = 0.5
 zone_thickness = {strip!r}
@@ -110,6 +111,8 @@ def check_table(exe, root, expected_rows):
     rows = read_csv(table)
     check(len(rows) == expected_rows, f"constitutive table: {len(rows)} rows, expected {expected_rows}")
     check({row["run"] for row in rows} == {"discs", "spheres"}, f"constitutive table: runs {({r['run'] for r in rows})}")
+    # An elastic gas is steady from the start: its averages (from t = 10) count.
+    check(all(row["steady"] == "1" for row in rows), "constitutive table: a gas run not marked steady")
     check("2 runs" in out, f"constitutive: output {out!r}")
     status, _, err = run(exe, "plot", root)
     check(status == 0, f"plot of the table: exited {status}: {err.strip()}")

@@ -69,7 +69,8 @@ def check_couette(exe, tmp):
     summary, rows = run_case(exe, tmp, "couette", COUETTE, "run.duration=20000")
     if rows is None or not check_columns("couette", rows, COMMON_COLUMNS + COUETTE_COLUMNS):
         return
-    for key in ("mean_gap", "shear_speed", "slip_fraction_bottom", "slip_fraction_top", "steady_from"):
+    for key in ("mean_gap", "shear_speed", "slip_fraction_bottom", "slip_fraction_top", "steady_from",
+                "slip_fraction_bottom_error", "slip_fraction_top_error", "averaged_when_steady"):
         check(key in summary, f"couette: summary.json lacks '{key}'")
     speed, gap = summary["shear_speed"], summary["mean_gap"]
     # keep_shear_rate: U_T / H stays at its start value 1/24, up to the gap's drift between servo
@@ -112,6 +113,15 @@ def check_chute(exe, tmp):
     for key in CHUTE_KEYS:
         value = summary[key]
         check(isinstance(value, (int, float)) and math.isfinite(value) and value > 0, f"chute: {key} = {value!r}")
+    # Standard errors of the scalars: positive, and (300 sqrt(R/g) of samples every 1) well under the
+    # values themselves; the slip velocity's is the bottom strip's u error.
+    for key in ("flow_depth", "mass_flow_per_width", "mean_velocity", "froude_number", "slip_velocity", "slip_fraction"):
+        error = summary.get(key + "_error")
+        check(isinstance(error, (int, float)) and 0 < error < 0.5 * summary[key], f"chute: {key}_error = {error!r}")
+    check(summary["slip_velocity_error"] == float(rows[0]["u_error"]) or
+          abs(summary["slip_velocity_error"] - float(rows[0]["u_error"])) < 1e-6 * summary["slip_velocity_error"],
+          "chute: slip_velocity_error is not the bottom strip's u_error")
+    check(summary["averaged_when_steady"] is False, "chute: averaged_when_steady for an accelerating flow")
     # Slip at the bottom (Campbell: ~40 % of the maximum velocity at 30 degrees).
     check(0 < summary["slip_fraction"] < 1, f"chute: slip_fraction {summary['slip_fraction']}")
     check(abs(summary["slip_velocity"] - float(rows[0]["u"])) < 1e-6 * summary["slip_velocity"],

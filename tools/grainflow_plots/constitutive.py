@@ -1,6 +1,7 @@
 """Campbell's (1982) constitutive functions against the solids fraction, over strips and runs.
 
-constitutive_table.csv (`grainflow constitutive`), else one run's constitutive.csv ->
+constitutive_table.csv (`grainflow constitutive`; only its runs averaged once steady), else one
+run's constitutive.csv ->
   constitutive_chi.png (Fig. 3.5): chi(nu) = P_yy / (rho_p sum <u_i'^2>) of every usable strip, one
       marker per run with its error bar, beside the elastic gas's nu Z(nu) / D (Henderson's discs,
       Carnahan-Starling's spheres), Campbell's limits drawn as lines: chi -> 0 as nu -> 0, singular
@@ -34,8 +35,11 @@ def plot(outdir, info):
         return []
     table = read_table(path, REQUIRED, text_columns=("run",))
     runs = run_labels(path, len(table))
+    if "steady" in table:  # a collected table: only runs averaged once steady (Campbell's Fig. 3.5 used converged flows)
+        for key in ("usable_chi", "usable_f"):
+            table.columns[key] = np.where(table["steady"] == 1, table[key], 0)
     if not np.any(table["usable_chi"] == 1):
-        raise PlotError(f"{path}: no strip is usable for chi (usable_chi = 1)")
+        raise PlotError(f"{path}: no strip is usable for chi (usable_chi = 1 in a steady run)")
     written = [plot_chi(outdir, table, runs)]
     if np.any(table["usable_f"] == 1):  # none in a gas at rest: f needs a resolved shear rate
         written.append(plot_f(outdir, table, runs))

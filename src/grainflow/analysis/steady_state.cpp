@@ -32,10 +32,15 @@ Line fit_line(std::span<const double> t, std::span<const double> x) {
   return line;
 }
 
+// A change below this fraction of the series' magnitude is round-off, not drift: an elastic gas's
+// kinetic energy is constant to ~1e-13 and its "noise" is round-off too, so their ratio means nothing.
+constexpr double kRoundOffChange = 1e-9;
+
 // |difference| / error; an error of zero (a noiseless series) makes any real difference infinite.
 double z_of(double difference, double error, double scale) {
+  if (std::fabs(difference) <= kRoundOffChange * scale) return 0.0;
   if (error > 0.0) return std::fabs(difference) / error;
-  return std::fabs(difference) <= 1e-12 * scale ? 0.0 : std::numeric_limits<double>::infinity();
+  return std::numeric_limits<double>::infinity();
 }
 
 }  // namespace

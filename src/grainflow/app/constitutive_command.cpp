@@ -8,6 +8,7 @@
 
 #include "grainflow/core/error.hpp"
 #include "grainflow/io/atomic_file.hpp"
+#include "grainflow/io/flat_json_reader.hpp"
 
 namespace grainflow::app {
 namespace {
@@ -18,15 +19,30 @@ constexpr const char* kRunFile = "constitutive.csv";
 
 struct RunTable {
   std::string run;                   // the run's folder, relative to the folder named
+  bool steady = false;               // summary.json's averaged_when_steady
   std::vector<std::string> comments;  // '#' lines
   std::string header;
   std::vector<std::string> rows;
 };
 
+// Whether the run's summary says its averages began after the flow had become steady (Campbell's
+// convergence check); false when the summary is missing or says otherwise.
+bool steady_run(const fs::path& run_folder) {
+  const fs::path summary = run_folder / "summary.json";
+  if (!fs::exists(summary)) return false;
+  try {
+    for (const auto& [key, value] : io::read_flat_json_file(summary.string()))
+      if (key == "averaged_when_steady") return value.kind == io::FlatJsonValue::Kind::boolean && value.text == "true";
+  } catch (const io::JsonParseError& e) {
+    throw InputError(summary.string(), "", e.what());
+  }
+  return false;
+}
+
 RunTable read_run_table(const fs::path& file, const std::string& run) {
   std::ifstream in(file);
   if (!in) throw InputError(file.string(), "", "cannot be read");
-  RunTable t{run, {}, {}, {}};
+  RunTable t{run, steady_run(file.parent_path()), {}, {}, {}};
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty()) continue;
@@ -99,22 +115,25 @@ int collect_constitutive(const ConstitutiveOptions& options) {
       throw InputError(t.run + "/" + kRunFile, "", "its columns differ from " + tables.front().run + "/" + kRunFile +
                                                        "'s (written by another grainflow version?); rerun it");
   const int usable_chi = column_index(header, "usable_chi"), usable_f = column_index(header, "usable_f");
-  long rows = 0, chi_rows = 0, f_rows = 0;
+  long rows = 0, chi_rows = 0, f_rows = 0, steady_runs = 0;
+  for (const auto& t : tables) steady_runs += t.steady;
   io::write_atomically(output.string(), [&](std::ostream& out) {
     out << "# Campbell 1982 constitutive functions collected over " << tables.size() << " runs (grainflow constitutive)\n";
     for (const auto& comment : tables.front().comments)
       if (comment.rfind("# constitutive functions per strip", 0) != 0) out << comment << "\n";  // rho_p, R differ per run
-    out << "run," << header << "\n";
+    out << "# steady: 1 when the run's averages began after its kinetic energy had become steady "
+           "(summary.json averaged_when_steady, Campbell's section 2.5); figures use those runs only\n";
+    out << "run,steady," << header << "\n";
     for (const auto& t : tables)
       for (const auto& row : t.rows) {
-        out << t.run << "," << row << "\n";
+        out << t.run << "," << (t.steady ? 1 : 0) << "," << row << "\n";
         ++rows;
-        chi_rows += flag_set(row, usable_chi);
-        f_rows += flag_set(row, usable_f);
+        chi_rows += t.steady && flag_set(row, usable_chi);
+        f_rows += t.steady && flag_set(row, usable_f);
       }
   });
-  std::cout << "wrote " << output.string() << ": " << rows << " strips from " << tables.size() << " runs (" << chi_rows
-            << " usable for chi, " << f_rows << " for f_s and f_N)\n";
+  std::cout << "wrote " << output.string() << ": " << rows << " strips from " << tables.size() << " runs, " << steady_runs
+            << " of them averaged when steady; their strips usable for chi: " << chi_rows << ", for f_s and f_N: " << f_rows << "\n";
   return 0;
 }
 

@@ -31,10 +31,14 @@ struct EdmdProfiles::Derived {
   // Chute.
   double depth = kNaN, mass_flow = kNaN, mass_per_width = kNaN, mean_velocity = kNaN, max_velocity = kNaN;
   double froude = kNaN, froude_normal = kNaN, critical_froude = kNaN, angle = kNaN;
+  double max_velocity_error = kNaN;
+  // Standard errors (block averages of the per-sample values; NaN with too few samples).
+  double depth_error = kNaN, mass_flow_error = kNaN, mean_velocity_error = kNaN, froude_error = kNaN;
   analysis::ProfileParameters shape{kNaN, kNaN, kNaN, kNaN};
   // Couette: gap H and U_T, the top wall's x speed relative to the bottom's, means over the samples.
   double gap = kNaN, speed = kNaN;
   double slip = kNaN, slip_top = kNaN;  // m/s, the strip nearest the wall relative to the wall
+  double slip_error = kNaN, slip_top_error = kNaN;
 };
 
 EdmdProfiles::EdmdProfiles(const CaseConfig& c, const edmd::EdmdState& s)
@@ -60,12 +64,14 @@ void EdmdProfiles::sample(const edmd::EdmdState& s, long long collisions) {
   thickness_ = grid.thickness();
   cross_section_ = grid.cross_section();
   const ParticleStore& p = s.particles;
-  double mass = 0.0, moment = 0.0;
+  double mass = 0.0, moment = 0.0, momentum = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     mass += p.mass[i];
     moment += p.mass[i] * (p.position[i].y - grid.lo());
+    momentum += p.mass[i] * p.velocity[i].x;
   }
   if (mass > 0.0) sum_height_ += moment / mass;
+  bulk_blocks_.add({{mass > 0.0 ? moment / mass : 0.0, momentum, mass}});
   sum_gap_ += grid.hi() - grid.lo();
   if (bottom_wall_ >= 0) sum_bottom_speed_ += s.walls[bottom_wall_].velocity.x;
   if (top_wall_ >= 0) sum_top_speed_ += s.walls[top_wall_].velocity.x;
@@ -112,6 +118,8 @@ void EdmdProfiles::derive_couette(const std::vector<observe::StripAverages>& str
   d.scaling = d.speed != 0.0 ? (d.gap / d.speed) * (d.gap / d.speed) : kNaN;
   d.slip = strips.front().value[observe::strip::u] - bottom_speed;
   d.slip_top = top_speed - strips.back().value[observe::strip::u];
+  d.slip_error = strips.front().error[observe::strip::u];
+  d.slip_top_error = strips.back().error[observe::strip::u];
 }
 
 // Depth, mass flow, Froude numbers, Appendix A's profile parameters, slip at the bottom.
@@ -131,7 +139,10 @@ void EdmdProfiles::derive_chute(const std::vector<observe::StripAverages>& strip
     mass += x[observe::strip::mass];
     if (!strip.has_mass()) continue;
     momentum += x[observe::strip::mass] * x[u];
-    if (height <= d.depth && !(x[u] <= d.max_velocity)) d.max_velocity = x[u];  // (NaN at first)
+    if (height <= d.depth && !(x[u] <= d.max_velocity)) {  // (NaN at first)
+      d.max_velocity = x[u];
+      d.max_velocity_error = strip.error[u];
+    }
   }
   d.mass_flow = momentum / cross_section_;
   d.mass_per_width = mass / cross_section_;
@@ -142,6 +153,20 @@ void EdmdProfiles::derive_chute(const std::vector<observe::StripAverages>& strip
   d.critical_froude = analysis::critical_froude_number(d.shape, g_normal / g_magnitude);
   const double wall_speed = bottom_wall_ >= 0 ? sum_bottom_speed_ / samples : 0.0;
   d.slip = strips.front().value[u] - wall_speed;
+  d.slip_error = strips.front().error[u];
+  // Errors: each block's mean height, momentum per width and momentum / mass.
+  std::vector<double> height, flow, velocity;
+  for (const auto& block : bulk_blocks_.blocks()) {
+    const double n = static_cast<double>(bulk_blocks_.block_length());
+    height.push_back(block[0].height / n);
+    flow.push_back(block[0].momentum / n / cross_section_);
+    velocity.push_back(block[0].mass > 0.0 ? block[0].momentum / block[0].mass : kNaN);
+  }
+  d.depth_error = 2.0 * observe::blocked_standard_error(height);
+  d.mass_flow_error = observe::blocked_standard_error(flow);
+  d.mean_velocity_error = observe::blocked_standard_error(velocity);
+  // Fr = u / sqrt(g H): relative errors add in quadrature, H's at half weight.
+  d.froude_error = std::fabs(d.froude) * std::hypot(d.mean_velocity_error / d.mean_velocity, 0.5 * d.depth_error / d.depth);
 }
 
 std::vector<StripKinematics> EdmdProfiles::strip_kinematics() const {
@@ -253,12 +278,16 @@ void EdmdProfiles::write(const std::string& dir, io::JsonObject& summary, std::v
   if (chute_) {
     summary.number("chute_angle", d.angle);
     summary.number("flow_depth", d.depth);
+    summary.number("flow_depth_error", d.depth_error);
     summary.number("mass_flow_per_width", d.mass_flow);
+    summary.number("mass_flow_per_width_error", d.mass_flow_error);
     summary.number("mass_per_width", d.mass_per_width);
     summary.number("mean_velocity", d.mean_velocity);
+    summary.number("mean_velocity_error", d.mean_velocity_error);
     summary.number("depth_mean_velocity", d.shape.depth_mean_velocity);
     summary.number("max_velocity", d.max_velocity);
     summary.number("froude_number", d.froude);
+    summary.number("froude_number_error", d.froude_error);
     summary.number("froude_number_normal", d.froude_normal);
     summary.number("mean_solids_fraction", d.shape.mean_solids_fraction);
     summary.number("momentum_coefficient_gamma", d.shape.gamma);
@@ -267,16 +296,23 @@ void EdmdProfiles::write(const std::string& dir, io::JsonObject& summary, std::v
     const bool known = std::isfinite(d.froude) && std::isfinite(d.critical_froude);
     summary.string("flow_regime", !known ? "unknown" : d.froude > d.critical_froude ? "supercritical" : "subcritical");
     summary.number("slip_velocity", d.slip);
+    summary.number("slip_velocity_error", d.slip_error);
     summary.number("slip_fraction", d.slip / d.max_velocity);
+    summary.number("slip_fraction_error", std::hypot(d.slip_error, d.slip / d.max_velocity * d.max_velocity_error) /
+                                              std::fabs(d.max_velocity));
     summary.number("slip_velocity_scaled", d.slip / std::sqrt(g * radius));
   }
   if (couette) {
     summary.number("mean_gap", d.gap);
     summary.number("shear_speed", d.speed);
     summary.number("slip_velocity_bottom", d.slip);
+    summary.number("slip_velocity_bottom_error", d.slip_error);
     summary.number("slip_velocity_top", d.slip_top);
+    summary.number("slip_velocity_top_error", d.slip_top_error);
     summary.number("slip_fraction_bottom", d.slip / d.speed);
+    summary.number("slip_fraction_bottom_error", d.slip_error / std::fabs(d.speed));
     summary.number("slip_fraction_top", d.slip_top / d.speed);
+    summary.number("slip_fraction_top_error", d.slip_top_error / std::fabs(d.speed));
   }
 }
 
@@ -284,6 +320,8 @@ void report_steady_state(std::span<const double> time, std::span<const double> k
                          io::JsonObject& summary, std::vector<std::string>& warnings) {
   const analysis::SteadyState steady = analysis::detect_steady_state(time, kinetic_energy);
   summary.number("steady_from", steady.steady_from ? *steady.steady_from : kNaN);
+  // Whether the long-term averages describe the steady flow: it converged before they began.
+  summary.boolean("averaged_when_steady", steady.steady_from && averaging_start >= *steady.steady_from);
   if (steady.too_short) {
     warnings.push_back("convergence not judged (Campbell 1982 section 2.5): the kinetic-energy history " + steady.reason +
                        "; use a smaller output.interval");

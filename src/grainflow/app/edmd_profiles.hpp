@@ -15,6 +15,7 @@
 #include "grainflow/core/case_config.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 #include "grainflow/io/json_writer.hpp"
+#include "grainflow/observe/block_sums.hpp"
 #include "grainflow/observe/strip_profile.hpp"
 
 namespace grainflow::app {
@@ -60,6 +61,15 @@ class EdmdProfiles {
   bool chute_;
   // Sums over the samples: chute mass-mean height above the bottom; Couette gap and wall speeds.
   double sum_height_ = 0.0, sum_gap_ = 0.0, sum_bottom_speed_ = 0.0, sum_top_speed_ = 0.0;
+  // The same per sample in blocks, for the chute scalars' standard errors.
+  struct BulkSample {
+    double height = 0.0, momentum = 0.0, mass = 0.0;  // m, kg m/s (x), kg
+    BulkSample& operator+=(const BulkSample& o) {
+      height += o.height, momentum += o.momentum, mass += o.mass;
+      return *this;
+    }
+  };
+  observe::BlockSums<BulkSample> bulk_blocks_;
   // At the last sample: the strips' low end and thickness, m, and their cross-section, m (3D: m^2).
   double bottom_ = 0.0, thickness_ = 0.0, cross_section_ = 0.0;
 };
