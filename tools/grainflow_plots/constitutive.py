@@ -3,7 +3,8 @@
 constitutive_table.csv (`grainflow constitutive`; only its runs averaged once steady), else one
 run's constitutive.csv ->
   constitutive_chi.png (Fig. 3.5): chi(nu) = P_yy / (rho_p sum <u_i'^2>) of every usable strip, one
-      marker per run with its error bar, beside the elastic gas's nu Z(nu) / D (Henderson's discs,
+      colour per study with its error bar (below: chi_local, with the fluctuations about the
+      instantaneous strip mean, free of a small bed's collective surging), beside the elastic gas's nu Z(nu) / D (Henderson's discs,
       Carnahan-Starling's spheres), Campbell's limits drawn as lines: chi -> 0 as nu -> 0, singular
       at large nu (discs cannot exceed the triangular packing 0.907; layers stop sliding past
       pi / (sqrt 3 + 2 pi / 3) = 0.821).
@@ -66,25 +67,32 @@ def elastic_chi(nu, dimension):
     return nu * (1 + nu + nu * nu - nu ** 3) / (1 - nu) ** 3 / 3
 
 
-def by_run(table, runs, mask):
-    """[(label, index array)] of the rows in `mask`, one entry per run in first-seen order."""
+def study_of(label):
+    """A run's study: the first part of its folder (a sweep's runs share it)."""
+    return label.split("/")[0]
+
+
+def by_study(runs, mask):
+    """[(study, index array)] of the rows in `mask`, one entry per study in first-seen order."""
+    studies = np.asarray([study_of(label) for label in runs])
     order = []
-    for label, keep in zip(runs, mask):
-        if keep and label not in order:
-            order.append(label)
-    labels = np.asarray(runs)
-    return [(label, np.nonzero(mask & (labels == label))[0]) for label in order]
+    for study, keep in zip(studies, mask):
+        if keep and study not in order:
+            order.append(study)
+    return [(study, np.nonzero(mask & (studies == study))[0]) for study in order]
 
 
 def scatter_runs(axis, table, runs, mask, x_key, y_key, error_key):
+    """One colour and marker per study, the same in every panel (numbered over the whole table);
+    returns how many runs the points come from."""
     styles = ["o", "s", "^", "v", "D", "<", ">", "p", "h", "*"]
-    groups = by_run(table, runs, mask)
-    for number, (label, rows) in enumerate(groups):
-        y = table[y_key][rows]
+    numbers = {study: k for k, (study, _) in enumerate(by_study(runs, np.ones(len(runs), dtype=bool)))}
+    for study, rows in by_study(runs, mask):
+        number = numbers[study]
         errors = error_bars(table[error_key][rows])
-        axis.errorbar(table[x_key][rows], y, yerr=errors, fmt=styles[number % len(styles)], ms=4, capsize=2,
-                      color=f"C{number % 10}", label=label if len(groups) <= 14 else None)
-    return len(groups)
+        axis.errorbar(table[x_key][rows], table[y_key][rows], yerr=errors, fmt=styles[number % len(styles)], ms=4,
+                      capsize=2, color=f"C{number % 10}", label=study)
+    return len({label for label, keep in zip(runs, mask) if keep})
 
 
 def limit_lines(axis, three_d_axis=False):
@@ -98,22 +106,27 @@ def limit_lines(axis, three_d_axis=False):
 def plot_chi(outdir, table, runs):
     usable = table["usable_chi"] == 1
     dimensions = [d for d in (2, 3) if np.any(usable & (table["dimension"] == d))]
-    figure, axes = plt.subplots(1, len(dimensions), figsize=(6.4 * len(dimensions), 4.8), squeeze=False)
-    for axis, dim in zip(axes[0], dimensions):
-        mask = usable & (table["dimension"] == dim) & (table["chi"] > 0)
-        count = scatter_runs(axis, table, runs, mask, "solids_fraction", "chi", "chi_error")
-        upper = 0.88 if dim == 2 else 0.6
-        nu = np.linspace(0.005, upper, 200)
-        axis.plot(nu, elastic_chi(nu, dim), "k-", lw=1,
-                  label="elastic gas, " + ("Henderson" if dim == 2 else "Carnahan-Starling"))
-        if dim == 2:
-            limit_lines(axis)
-        axis.set_yscale("log")
-        axis.set_xlim(0, 0.95 if dim == 2 else 0.7)
-        axis.set_xlabel("solids fraction nu" + (" (discs)" if dim == 2 else " (spheres)"))
-        axis.set_ylabel("chi(nu) = p / (rho_p sum <u_i'^2>)")
-        axis.set_title(f"equation of state, {int(np.count_nonzero(mask))} strips of {count} runs")
-        axis.legend(fontsize=6, loc="upper left")
+    rows = [("chi", "chi = p / (rho_p sum <u_i'^2>)", "time-mean fluctuations (Campbell)")]
+    if "chi_local" in table:
+        rows.append(("chi_local", "chi with D T_Lan", "fluctuations about the instantaneous strip mean"))
+    figure, axes = plt.subplots(len(rows), len(dimensions), figsize=(6.4 * len(dimensions), 4.8 * len(rows)),
+                                squeeze=False)
+    for row, (key, ylabel, what) in enumerate(rows):
+        for axis, dim in zip(axes[row], dimensions):
+            mask = usable & (table["dimension"] == dim) & (table[key] > 0)
+            count = scatter_runs(axis, table, runs, mask, "solids_fraction", key, key + "_error")
+            upper = 0.88 if dim == 2 else 0.6
+            nu = np.linspace(0.005, upper, 200)
+            axis.plot(nu, elastic_chi(nu, dim), "k-", lw=1,
+                      label="elastic gas, " + ("Henderson" if dim == 2 else "Carnahan-Starling"))
+            if dim == 2:
+                limit_lines(axis)
+            axis.set_yscale("log")
+            axis.set_xlim(0, 0.95 if dim == 2 else 0.7)
+            axis.set_xlabel("solids fraction nu" + (" (discs)" if dim == 2 else " (spheres)"))
+            axis.set_ylabel(ylabel)
+            axis.set_title(f"{what}: {int(np.count_nonzero(mask))} strips of {count} runs", fontsize=9)
+            axis.legend(fontsize=6, loc="upper left")
     figure.suptitle("Campbell 1982 Fig. 3.5: chi -> 0 as nu -> 0, singular at large nu")
     figure.tight_layout()
     return save_atomically(figure, f"{outdir}/constitutive_chi.png")

@@ -12,6 +12,10 @@ sweep.csv -> one figure per summary field present, with its error bars (`<field>
 <run>/profiles.csv of event-driven runs -> sweep_strip_profiles.png: the runs' nu and translational
     temperature against y/H (chute) or y/gap (Couette; temperature x (H/U_T)^2) overlaid, e.g.
     Campbell's (1982) depth series of Fig. 3.10.
+<run>/analysis/distributions.json (event-driven) -> sweep_distributions.png: Savage-Jeffrey's S
+    against the solids fraction (Campbell's Figs. 3.40-3.41: S grows with density, an order
+    parameter) and the fitted exponent ratios a_i / a_mi of X1..X5 against S (section 3.4.1: 1 for
+    a Maxwellian), each with its error bar.
 <run>/analysis/diffusion.json -> sweep_diffusion.png: the horizontal diffusion coefficients against
     the granular temperature of the same component (Fig. A4.24; the solids-weighted mean of the
     profile's temperature_x|y|z, else the cell temperature) and against Gamma (Fig. A4.23).
@@ -59,6 +63,7 @@ def plot(outdir, info):
     written += plot_profiles(sweep)
     written += plot_strip_profiles(sweep)
     written += plot_diffusion(sweep)
+    written += plot_distributions(sweep)
     return written
 
 
@@ -327,3 +332,43 @@ def plot_diffusion(sweep):
     figure.suptitle(sweep.title("horizontal self-diffusion coefficients"), fontsize=10)
     figure.tight_layout()
     return [save_atomically(figure, os.path.join(sweep.outdir, "sweep_diffusion.png"))]
+
+
+def plot_distributions(sweep):
+    points = []  # distributions.json of each run that has one
+    for row in sweep.rows:
+        path = existing(sweep.folder(row), "analysis", "distributions.json")
+        if path:
+            points.append(read_json(path))
+    if len(points) < 2:
+        return []
+    nu = np.array([json_number(p, "solids_fraction", math.nan) for p in points])
+    s = np.array([json_number(p, "s", math.nan) for p in points])
+    order = np.argsort(nu)
+    figure, (left, right) = plt.subplots(1, 2, figsize=(12.0, 5.0))
+    left.plot(nu[order], s[order], "ko-", label="S = 2R (du/dy) / <u'^2>^1/2")
+    s_uv = np.array([json_number(p, "s_uv", math.nan) for p in points])
+    if np.any(np.isfinite(s_uv)):
+        left.plot(nu[order], s_uv[order], "s--", color="0.5", markerfacecolor="none",
+                  label="S with <u'^2> + <v'^2> (the listing's)")
+    left.set_xlabel("solids fraction \u03bd of the analysed strips")
+    left.set_ylabel("Savage-Jeffrey S")
+    left.set_title("S against density (Campbell Figs. 3.40-3.41)", fontsize=9)
+    for k in range(1, 7):
+        ratio = np.array([json_number(p, f"a{k}_ratio", math.nan) for p in points])
+        if not np.any(np.isfinite(ratio)):
+            continue
+        error = error_bars(np.array([json_number(p, f"a{k}_ratio_error", math.nan) for p in points]))
+        components = points[0].get(f"a{k}_components", "")
+        right.errorbar(s[order], ratio[order], yerr=None if error is None else error[order], marker="o", capsize=3,
+                       label=f"X{k} ({components})")
+    right.axhline(1.0, color="k", lw=0.8, ls=":")
+    right.set_xlabel("Savage-Jeffrey S")
+    right.set_ylabel("a_i / a_mi (1: Maxwellian)")
+    right.set_title("fitted exponents against S (Campbell section 3.4.1)", fontsize=9)
+    for axis in (left, right):
+        axis.legend(loc="best", fontsize=8)
+        axis.grid(True, alpha=0.3)
+    figure.suptitle(sweep.title("velocity distributions across the runs"), fontsize=10)
+    figure.tight_layout()
+    return [save_atomically(figure, os.path.join(sweep.outdir, "sweep_distributions.png"))]

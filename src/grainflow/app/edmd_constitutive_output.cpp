@@ -25,6 +25,7 @@ void write_constitutive(const std::string& path, const CaseConfig& c, int dimens
            "<u_i'^2>), f_s = tau_s / (rho_p R^2 (du/dy)^2), f_N = P_yy / (rho_p R^2 (du/dy)^2); rho_p = "
         << density << ", R = " << radius << "\n";
     out << "# stresses measured from the collisions (stresses.csv); *_weight: from Campbell's weight integral instead; "
+           "chi_local: with the fluctuations about the instantaneous strip mean (D temperature_lan) instead of the time mean; "
            "chi_elastic: an elastic gas's nu Z(nu) / D (Henderson discs, Carnahan-Starling spheres); solids_fraction_3d: "
            "4/(3 sqrt pi) nu^(3/2) in 2D (section 3.1), nu in 3D\n";
     out << "# usable_chi: not against a wall, nu >= " << kConstitutiveMinimumSolidsFraction
@@ -34,7 +35,7 @@ void write_constitutive(const std::string& path, const CaseConfig& c, int dimens
     out << "strip,y,dimension,solids_fraction,solids_fraction_error,solids_fraction_3d,velocity_variance,"
            "velocity_variance_error,normal_stress,normal_stress_error,shear_stress,shear_stress_error,du_dy,du_dy_error,"
            "chi,chi_error,chi_elastic,f_s,f_s_error,f_n,f_n_error,weight_normal_stress,weight_shear_stress,chi_weight,"
-           "f_s_weight,f_n_weight,plug_flow,usable_chi,usable_f\n";
+           "f_s_weight,f_n_weight,chi_local,chi_local_error,plug_flow,usable_chi,usable_f\n";
     const std::size_t n = std::min(strips.size(), stresses.size());
     for (std::size_t k = 0; k < n; ++k) {
       const auto& x = strips[k].averages;
@@ -55,6 +56,10 @@ void write_constitutive(const std::string& path, const CaseConfig& c, int dimens
       w.normal_stress = p.weight_row.y, w.normal_stress_error = 0.0;
       w.shear_stress = -p.weight_row.x, w.shear_stress_error = 0.0;
       const auto vw = analysis::constitutive_functions(w, density, radius);
+      analysis::StripMoments local = m;  // the fluctuations about the instantaneous strip mean (Lan's)
+      local.velocity_variance = dimension * x.value[temperature_lan];
+      local.velocity_variance_error = dimension * x.error[temperature_lan];
+      const auto vl = analysis::constitutive_functions(local, density, radius);
       const double nu = m.solids_fraction;
       const bool at_wall = (k == 0 && wall_below) || (k + 1 == n && wall_above);
       const bool usable_chi = !at_wall && nu >= kConstitutiveMinimumSolidsFraction && std::isfinite(v.chi);
@@ -65,7 +70,7 @@ void write_constitutive(const std::string& path, const CaseConfig& c, int dimens
                                m.solids_fraction_error, nu_3d, m.velocity_variance, m.velocity_variance_error,
                                m.normal_stress, m.normal_stress_error, m.shear_stress, m.shear_stress_error, m.du_dy,
                                m.du_dy_error, v.chi, v.chi_error, analysis::elastic_gas_chi(nu, dimension), v.f_s,
-                               v.f_s_error, v.f_n, v.f_n_error, w.normal_stress, w.shear_stress, vw.chi, vw.f_s, vw.f_n,
+                               v.f_s_error, v.f_n, v.f_n_error, w.normal_stress, w.shear_stress, vw.chi, vw.f_s, vw.f_n, vl.chi, vl.chi_error,
                                strips[k].plug_flow ? 1.0 : 0.0, usable_chi ? 1.0 : 0.0, usable_f ? 1.0 : 0.0};
       bool first = true;
       for (double value : values) out << (first ? "" : ",") << value, first = false;
