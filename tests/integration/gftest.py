@@ -4,6 +4,7 @@ folder. Each script imports this module by putting its own folder on sys.path, s
 `/usr/bin/python3 tests/integration/test_X.py PATH_TO_grainflow` works from the repo root.
 """
 import csv
+import math
 import os
 import re
 import subprocess
@@ -67,3 +68,50 @@ def finish(name):
         return 1
     print(f"{name}: all checks passed")
     return 0
+
+
+ELASTIC_GAS = """[engine]
+kind = "edmd"
+dimension = {dim}
+
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [{L!r}, {L!r}, {Lz!r}]
+boundary = {{ x = "periodic", y = "periodic", z = "periodic" }}
+
+[gravity]
+vector = [0.0, 0.0, 0.0]
+
+[[species]]
+name = "p"
+diameter = 1.0
+density = {density!r}   # unit mass
+count = {N}
+
+[particles]
+init = "lattice"
+lattice_spacing = {spacing!r}
+initial_temperature = 1.0
+seed = {seed}
+
+[collision]
+restitution = 1.0
+
+[run]
+duration = {duration}
+
+[output]
+{output}
+"""
+
+
+def elastic_gas_case(dim, side, phi, duration, output, seed=21):
+    """The case text of side^dim elastic smooth particles (discs in 2D, spheres in 3D) of diameter 1
+    and unit mass on a square / simple-cubic lattice at packing fraction phi, T = 1, periodic on
+    every axis, no gravity; `output` is the [output] table's body. Returns (text, box edge)."""
+    volume = math.pi / 4 if dim == 2 else math.pi / 6
+    spacing = (volume / phi) ** (1.0 / dim)
+    length = side * spacing
+    text = ELASTIC_GAS.format(dim=dim, L=length, Lz=length if dim == 3 else 1.0, density=1.0 / volume, N=side ** dim,
+                              spacing=spacing * (1 - 1e-9), seed=seed, duration=duration, output=output)
+    return text, length

@@ -22,45 +22,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gftest import check, executable_from_argv, finish, read_csv, run, write_text  # noqa: E402
-
-GAS = """[engine]
-kind = "edmd"
-dimension = {dim}
-
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [{L!r}, {L!r}, {Lz!r}]
-boundary = {{ x = "periodic", y = "periodic", z = "periodic" }}
-
-[gravity]
-vector = [0.0, 0.0, 0.0]
-
-[[species]]
-name = "p"
-diameter = 1.0
-density = {density!r}   # unit mass
-count = {N}
-
-[particles]
-init = "lattice"
-lattice_spacing = {spacing!r}
-initial_temperature = 1.0
-seed = 21
-
-[collision]
-restitution = 1.0
-
-[run]
-duration = {duration}
-
-[output]
-interval = 2.0
-average_start = 10.0
-profile_interval = 0.5
-zone_thickness = {strip!r}
-"""
-
+from gftest import check, elastic_gas_case, executable_from_argv, finish, read_csv, run, write_text  # noqa: E402
 
 def henderson_chi(nu):
     return nu * (1 + nu * nu / 8) / (1 - nu) ** 2 / 2
@@ -71,12 +33,10 @@ def carnahan_starling_chi(nu):
 
 
 def gas_case(dim, side, phi, strips, duration):
-    """`side`^dim unit-mass particles of diameter 1 on a lattice giving packing fraction phi."""
-    volume = math.pi / 4 if dim == 2 else math.pi / 6
-    spacing = (volume / phi) ** (1.0 / dim)
-    length = side * spacing
-    return GAS.format(dim=dim, L=length, Lz=length if dim == 3 else 1.0, density=1.0 / volume, N=side ** dim,
-                      spacing=spacing * (1 - 1e-9), duration=duration, strip=length / strips)
+    """`side`^dim unit-mass particles of diameter 1 at packing fraction phi, in `strips` strips."""
+    _, length = elastic_gas_case(dim, side, phi, duration, "")
+    output = f"interval = 2.0\naverage_start = 10.0\nprofile_interval = 0.5\nzone_thickness = {length / strips!r}"
+    return elastic_gas_case(dim, side, phi, duration, output)[0]
 
 
 def check_gas(exe, root, name, dim, side, phi, strips, duration, reference):

@@ -25,7 +25,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gftest import check, executable_from_argv, finish, read_csv, run, write_text  # noqa: E402
+from gftest import check, elastic_gas_case, executable_from_argv, finish, read_csv, run, write_text  # noqa: E402
 
 CHUTE = "cases/campbell1982/chute_30deg.toml"
 CHUTE_DURATION = 50.0   # of the case's 500 (units sqrt(R/g)): ~0.1 s of wall time
@@ -160,53 +160,16 @@ def check_average_window_in_collisions(exe, tmp):
           "average_start_collisions: the window made no difference (test cannot tell)")
 
 
-HARD_DISCS = """[engine]
-kind = "edmd"
-dimension = 2
-
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [{L!r}, {L!r}, 1.0]
-boundary = {{ x = "periodic", y = "periodic", z = "periodic" }}
-
-[gravity]
-vector = [0.0, 0.0, 0.0]
-
-[[species]]
-name = "disc"
-diameter = 1.0
-density = 1.2732395447351628   # 4 / pi: unit mass
-count = {N}
-
-[particles]
-init = "lattice"
-lattice_spacing = {spacing!r}
-initial_temperature = 1.0
-seed = 12
-
-[collision]
-restitution = 1.0
-
-[run]
-duration = {duration}
-
-[output]
-interval = {interval}
-average_start = {start}
-"""
-
-
 def check_hard_disc_pressure(exe, tmp):
     # 400 elastic smooth discs at packing fraction 0.35 (20 x 20 square lattice melting within a few
-    # collisions per particle, ~8 collisions per unit time per disc). Averaged from t = 10 to 300:
-    # ~5e5 collisions. Henderson (1975) is within ~0.5% of simulations at this density (the engine
+    # collisions per particle, ~1.6 collisions per unit time per disc). Averaged from t = 10 to 300:
+    # ~1.9e5 collisions. Henderson (1975) is within ~0.5% of simulations at this density (the engine
     # test checks it more closely); the statistical error is estimated from the timeseries rows,
     # each a pressure over an interval of 10 (~40 collisions per disc, so nearly independent).
     # Tolerance: 1% of Z plus 3 standard errors; the standard error must be below 0.5%.
     phi, side = 0.35, 20
     spacing = math.sqrt(math.pi / 4 / phi)
-    text = HARD_DISCS.format(L=side * spacing, N=side * side, spacing=spacing * (1 - 1e-9), duration=300.0,
-                             interval=10.0, start=10.0)
+    text, _ = elastic_gas_case(2, side, phi, 300.0, "interval = 10.0\naverage_start = 10.0", seed=12)
     case = write_text(os.path.join(tmp, "hard_discs.toml"), text)
     out = os.path.join(tmp, "hard_discs")
     status, _, err = run(exe, "run", case, "-o", out, "--quiet")
