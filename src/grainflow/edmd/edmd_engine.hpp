@@ -323,15 +323,15 @@ class EdmdEngine {
         const Vec3 aj = acceleration(static_cast<std::uint32_t>(j));
         const Vec3 xj = flight_[j].x + dtj * flight_[j].v + (0.5 * dtj * dtj) * aj + shift;
         const Vec3 vj = flight_[j].v + dtj * aj + shift_velocity;
-        const double floor = kVelocityResolution * (speed_i + norm(vj));
+        auto floor = [&] { return kVelocityResolution * (speed_i + norm(vj)); };
         Vec3 dr = xi - xj;
         const double width = s_.box.length(0);
         if (x_images) dr.x -= width * std::nearbyint(dr.x / width);
         for (int image = x_images ? -1 : 0; image <= (x_images ? 1 : 0); ++image) {
           const Vec3 d{dr.x + image * width, dr.y, dr.z};
           const double t = (!rolls(i) && !rolls(static_cast<std::uint32_t>(j)))
-                               ? contact_time(d, vi - vj, ri + radius(j), floor)
-                               : contact_time_accelerated(d, vi - vj, ai - aj, ri + radius(j), best, floor);
+                               ? contact_time_before(d, vi - vj, ri + radius(j), best, floor)
+                               : contact_time_accelerated(d, vi - vj, ai - aj, ri + radius(j), best, floor());
           if (t < best) {
             best = t;
             e = Event{Kind::pair, 0, static_cast<std::uint32_t>(j), flight_[j].count};

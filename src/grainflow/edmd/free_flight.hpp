@@ -39,6 +39,24 @@ inline double contact_time(const Vec3& dr, const Vec3& dv, double sigma, double 
   return c / (-b + std::sqrt(discriminant));
 }
 
+// contact_time() for a search that keeps only the earliest event: kNever for any time not below
+// `horizon` (the best found so far), decided without the square root where t >= c / (-2b) (the
+// root's denominator is at most -2b) is already past it, with a 1e-9 margin so no earlier root is
+// dropped by rounding; and the speed floor, which costs a square root, evaluated only for a
+// touching pair. Same result as contact_time() wherever that is below the horizon.
+template <class SpeedFloor>
+inline double contact_time_before(const Vec3& dr, const Vec3& dv, double sigma, double horizon, SpeedFloor&& speed_floor) {
+  const double b = dot(dr, dv);
+  if (b >= 0.0) return kNever;
+  const double c = norm2(dr) - sigma * sigma;
+  if (c <= 0.0) return approaching(dr, dv, speed_floor()) ? 0.0 : kNever;
+  if (c > -2.0 * b * horizon * (1.0 + 1e-9)) return kNever;
+  const double a = norm2(dv);
+  const double discriminant = b * b - a * c;
+  if (discriminant <= 0.0) return kNever;
+  return c / (-b + std::sqrt(discriminant));
+}
+
 // First time t >= 0 at which gap(t) = gap + rate t + 0.5 accel t^2 reaches zero while closing
 // (d gap/dt < 0 there). A gap already <= 0 and closing gives 0; kNever if it never closes.
 // Used for walls and cell faces: gap is the signed distance to the plane in its normal direction.
