@@ -212,9 +212,10 @@ class DemEngine {
     const std::size_t n = p.size();
     const auto shifts = s_.box.shift_table();
     const int threads = threads_;
-    if (threads > 1) {
-      thread_force_.resize(threads);
-      thread_torque_.resize(threads);
+    if (threads > 1 && (thread_force_.size() != static_cast<std::size_t>(threads) || thread_force_[0].size() != n)) {
+      thread_force_.assign(threads, std::vector<Vec3>(n));
+      thread_torque_.assign(threads, std::vector<Vec3>(n));
+      thread_touched_.assign(threads, {});
     }
     double max_ratio = stats_.max_overlap_ratio;
     long contacts = 0, begun = 0;
@@ -225,15 +226,15 @@ class DemEngine {
 #else
       const int t = 0;
 #endif
+      // Each thread owns a contiguous range of particles and adds to their forces directly; a
+      // partner owned by another thread gets its share in this thread's buffer (a few percent of
+      // the pairs: the particles are sorted by cell, so a range is a slab of space).
+      const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
       Vec3* force = p.force.data();
       Vec3* torque = p.torque.data();
-      if (threads > 1) {
-        thread_force_[t].assign(n, Vec3{});
-        thread_torque_[t].assign(n, Vec3{});
-        force = thread_force_[t].data();
-        torque = thread_torque_[t].data();
-      }
-      const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+      Vec3* foreign_force = threads > 1 ? thread_force_[t].data() : force;
+      Vec3* foreign_torque = threads > 1 ? thread_torque_[t].data() : torque;
+      std::vector<std::uint32_t>* touched = threads > 1 ? &thread_touched_[t] : nullptr;
       for (std::size_t i = begin; i < end; ++i) {
         const Vec3 xi = p.position[i];
         const double ri = p.radius[i];
@@ -267,21 +268,29 @@ class DemEngine {
           const Vec3 total = f.normal * c.normal + f.tangential;
           const Vec3 arm = cross(c.normal, f.tangential);  // torque = -r n x F_t on both
           force[i] += total;
-          force[j] -= total;
           torque[i] -= ri * arm;
-          torque[j] -= rj * arm;
+          if (j >= begin && j < end) {
+            force[j] -= total;
+            torque[j] -= rj * arm;
+          } else {
+            foreign_force[j] -= total;
+            foreign_torque[j] -= rj * arm;
+            if (touched) touched->push_back(j);
+          }
           max_ratio = std::max(max_ratio, c.overlap / (2.0 * std::min(ri, rj)));
           ++contacts;
         }
       }
     }
-    if (threads > 1) {
-#pragma omp parallel for num_threads(threads) schedule(static)
-      for (std::size_t i = 0; i < n; ++i) {
-        for (int t = 0; t < threads; ++t) {
-          p.force[i] += thread_force_[t][i];
-          p.torque[i] += thread_torque_[t][i];
+    if (threads > 1) {  // the buffers' shares, each entry cleared after use (listed once per pair)
+      for (int t = 0; t < threads; ++t) {
+        for (const std::uint32_t j : thread_touched_[t]) {
+          p.force[j] += thread_force_[t][j];
+          p.torque[j] += thread_torque_[t][j];
+          thread_force_[t][j] = Vec3{};
+          thread_torque_[t][j] = Vec3{};
         }
+        thread_touched_[t].clear();
       }
     }
     stats_.max_overlap_ratio = max_ratio;
@@ -344,7 +353,8 @@ class DemEngine {
   NeighborPairs pairs_;
   ContactStore<State> contacts_;
   std::vector<Vec3> position_at_build_;
-  std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
+  std::vector<std::vector<Vec3>> thread_force_, thread_torque_;  // per thread: shares for others' particles (kept zero)
+  std::vector<std::vector<std::uint32_t>> thread_touched_;       // per thread: where those shares are
   std::array<int, 6> bump_wall_{};
   std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps  // wall carrying each face's bumps, -1 when they stand still
   ContactStatistics stats_;
