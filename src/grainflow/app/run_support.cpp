@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <iostream>
 
 #include "grainflow/io/atomic_file.hpp"
@@ -19,8 +21,18 @@ void Progress::update(double time) {
   std::fprintf(stderr, "\r  t = %.4g / %.4g s   %.3g s/s   ETA %.0f s   ", time, duration_, rate, eta);
 }
 
+// The process's peak resident memory so far (Linux VmHWM), bytes; 0 where /proc cannot tell.
+long long peak_resident_bytes() {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+    if (line.rfind("VmHWM:", 0) == 0) return std::atoll(line.c_str() + 6) * 1024LL;  // "VmHWM:  1234 kB"
+  return 0;
+}
+
 int finish_summary(io::JsonObject& summary, const std::string& dir, const std::vector<std::string>& errors,
                    const std::vector<std::string>& warnings, int exit_status, bool echo_errors) {
+  summary.integer("peak_memory_bytes", peak_resident_bytes());
   summary.strings("errors", errors);
   summary.strings("warnings", warnings);
   io::write_atomically(dir + "/summary.json", [&](std::ostream& out) { summary.write(out); });
