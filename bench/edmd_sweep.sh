@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Event-driven cost per event against N: elastic hard spheres (3D, packing fraction 0.45) and hard
 # discs (2D, area fraction 0.45), N = 10^3 .. 10^6, about 8 collisions per particle each run.
-# Prints N, events/s, collisions/s and nanoseconds per event (from summary.json).
+# Prints N, events/s, collisions/s, nanoseconds per event and the peak resident memory per particle
+# (summary.json; whole process, so a fixed ~20 MB weighs on small N: compare the large ones).
 # Usage: [GRAINFLOW=BINARY] bench/edmd_sweep.sh [MAX_EXPONENT]   (default 6)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -9,7 +10,7 @@ BIN=${GRAINFLOW:-build/release/grainflow}  # GRAINFLOW=path/to/another/build com
 MAX=${1:-6}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-printf '%-4s %-9s %12s %14s %12s\n' dim N events/s collisions/s ns/event
+printf '%-4s %-9s %12s %14s %12s %14s\n' dim N events/s collisions/s ns/event bytes/particle
 for dim in 3 2; do
   for ((e = 3; e <= MAX; ++e)); do
     n=$((10 ** e))
@@ -33,7 +34,8 @@ for dim in 3 2; do
 import json, sys
 s = json.load(open(sys.argv[1]))
 eps = s["events_per_second"]
-print(f"{sys.argv[2]:<4} {sys.argv[3]:<9} {eps:12.4g} {s['collisions_per_second']:14.4g} {1e9 / eps:12.1f}")
+print(f"{sys.argv[2]:<4} {sys.argv[3]:<9} {eps:12.4g} {s['collisions_per_second']:14.4g} {1e9 / eps:12.1f} "
+      f"{s['peak_memory_bytes'] / int(sys.argv[3]):14.0f}")
 PY
   done
 done
