@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Whole-case throughput: the LAMMPS chute benchmark (cases/bench/chute_hooke.toml) on 1 and 2
-# threads, a Walton–Braun variant of the same work, and the micro benchmarks of the hot kernels.
+# threads, a Walton–Braun variant of the same work, the event-driven cases run side by side with
+# DynamO and Smallenburg's EDMD, and the micro benchmarks of the hot kernels.
 # Prints particle-steps per second (median of RUNS runs). Usage: bench/run_bench.sh [RUNS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -29,12 +30,17 @@ else
   rate "chute_hooke (gran/hooke/history), 2 threads" cases/bench/chute_hooke.toml --threads 2
   rate "chute_walton_braun (friction 0.5), 1 thread" cases/bench/chute_walton_braun.toml --threads 1
 fi
-echo "== event-driven: 32,000 elastic hard spheres, packing fraction 0.45 (cases/bench/hard_spheres.toml) =="
-edmd_rates=()
-for ((r = 0; r < RUNS; ++r)); do
-  "$BIN" run cases/bench/hard_spheres.toml -o "$out/edmd" --quiet >/dev/null
-  edmd_rates+=("$(/usr/bin/python3 -c "import json; print(json.load(open('$out/edmd/summary.json'))['collisions_per_second'])")")
+echo "== event-driven, 32,000 spheres (cases/bench/*spheres*.toml), real collisions per second =="
+collision_rate() {  # case name
+  local rates=()
+  for ((r = 0; r < RUNS; ++r)); do
+    "$BIN" run "cases/bench/$1.toml" -o "$out/edmd" --quiet >/dev/null
+    rates+=("$(/usr/bin/python3 -c "import json; print(json.load(open('$out/edmd/summary.json'))['collisions_per_second'])")")
+  done
+  printf '%s\n' "${rates[@]}" | median | awk -v l="$1" '{printf "%-52s %8.3f M collisions/s\n", l, $1/1e6}'
+}
+for name in hard_spheres hard_spheres_n0.5 hard_spheres_n0.9 inelastic_spheres_n0.5 rough_spheres_n0.5 sheared_spheres_n0.5; do
+  collision_rate "$name"
 done
-printf '%s\n' "${edmd_rates[@]}" | median | awk '{printf "%-52s %8.3f M collisions/s\n", "hard_spheres, 1 thread", $1/1e6}'
 echo "== micro benchmarks =="
 build/release/bench/micro_kernels --benchmark_min_time=0.2
