@@ -64,7 +64,7 @@ void BM_NeighborBuild(benchmark::State& bench) {
   const CaseConfig c = load_case_from_string(gas_case(bench.range(0)), "bench.toml");
   DemState s = build_dem_state(c);
   CellGrid grid;
-  grid.setup(s.box, 1.1);
+  grid.setup(s.box, 1.1, s.particles.size());
   NeighborPairs pairs;
   for (auto _ : bench) {
     grid.bin(s.particles.position);

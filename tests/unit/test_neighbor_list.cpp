@@ -251,7 +251,7 @@ TEST(NeighborList, CellGridFindsExactlyTheAllPairsSet) {
       build_pairs_all(p, box, config.skin, all);
       EXPECT_EQ(pair_set(p, all), expected) << config.name << ", seed " << seed << ": build_pairs_all";
       CellGrid grid;
-      grid.setup(box, 2.0 * config.max_radius + config.skin);  // as the engine does
+      grid.setup(box, 2.0 * config.max_radius + config.skin, p.size());  // as the engine does
       grid.bin(p.position);
       for (int threads : {1, 3}) {
         NeighborPairs cells;
@@ -260,6 +260,32 @@ TEST(NeighborList, CellGridFindsExactlyTheAllPairsSet) {
       }
     }
   }
+}
+
+TEST(NeighborList, SparseHugeBoxGetsWiderCellsAndTheSamePairs) {
+  // 400 particles in a 2 cm cube at one corner of a 100 m periodic box: cells one cutoff wide would
+  // number 4096^3 (the per-axis cap), 275 GB of cell starts. The grid widens its cells instead
+  // (at most 32768 here) and must still find exactly the brute-force pairs, across the periodic
+  // faces too (the cluster straddles the box's corner).
+  const RandomConfig config{"cluster", {-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}, {true, true, true}, 400, 0.0015, 0.00045, 0.0};
+  PeriodicBox cluster;
+  cluster.lo = config.lo;
+  cluster.hi = config.hi;
+  cluster.periodic = config.periodic;
+  ParticleStore p = random_particles(config, cluster, 3);
+  PeriodicBox box;
+  box.lo = {0.0, 0.0, 0.0};
+  box.hi = {100.0, 100.0, 100.0};
+  box.periodic = {true, true, true};
+  for (std::size_t i = 0; i < p.size(); ++i) box.wrap(p.position[i], p.image[i]);
+  const std::set<PairKey> expected = brute_force(p, box, config.skin);
+  ASSERT_GT(expected.size(), 10u);
+  CellGrid grid;
+  grid.setup(box, 2.0 * config.max_radius + config.skin, p.size());
+  grid.bin(p.position);
+  NeighborPairs cells;
+  grid.build_pairs(p, box, config.skin, 1, cells);
+  EXPECT_EQ(pair_set(p, cells), expected);
 }
 
 TEST(NeighborList, EveryOverlappingPairIsListedAtEveryStep) {

@@ -252,7 +252,7 @@ void validate_edmd(const CaseConfig& c) {
       box.wrap(p.position[i], p.image[i]);
     }
     dem::CellGrid grid;
-    grid.setup(box, max_diameter);
+    grid.setup(box, max_diameter, p.size());
     grid.bin(p.position);
     dem::NeighborPairs pairs;
     grid.build_pairs(p, box, 0.0, 1, pairs);

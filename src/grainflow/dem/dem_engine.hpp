@@ -49,7 +49,7 @@ class DemEngine {
     }
     double max_radius = 0.0;
     for (double r : s_.particles.target_radius) max_radius = std::max(max_radius, r);
-    grid_.setup(s_.box, 2.0 * max_radius + s_.skin);
+    grid_.setup(s_.box, 2.0 * max_radius + s_.skin, s_.particles.size());
     for (auto& wall : s_.walls) wall.move_to(s_.time);
     rebuild(true);
     // The initial evaluation must not advance contact histories (no time has passed): dt = 0.

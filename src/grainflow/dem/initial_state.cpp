@@ -161,7 +161,7 @@ void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
   double max_radius = 0.0;
   for (std::size_t i = first; i < p.size(); ++i) max_radius = std::max(max_radius, p.target_radius[i]);
   CellGrid grid;
-  grid.setup(s.box, 2.0 * max_radius);
+  grid.setup(s.box, 2.0 * max_radius, p.size());
   grid.bin(p.position);
   NeighborPairs near;
   grid.build_pairs(p, s.box, 0.0, 1, near);

@@ -9,13 +9,20 @@
 
 namespace grainflow::dem {
 
-void CellGrid::setup(const PeriodicBox& box, double cell_size) {
+void CellGrid::setup(const PeriodicBox& box, double cell_size, std::size_t particles) {
   box_ = box;
-  for (int axis = 0; axis < 3; ++axis) {
-    cells_[axis] = std::max(1, static_cast<int>(std::floor(box.length(axis) / cell_size)));
-    // Cap the grid so a huge open box does not allocate absurd cell arrays.
-    cells_[axis] = std::min(cells_[axis], 1 << 12);
-    inv_size_[axis] = cells_[axis] / box.length(axis);
+  // A sparse box (a few particles in a huge domain) gets wider cells: at most a few per particle,
+  // so the grid's memory follows the particles, not the volume (wider cells only add candidates).
+  const double max_cells = std::max(32768.0, 4.0 * static_cast<double>(particles));
+  for (double size = cell_size;; size *= 1.25) {
+    double total = 1.0;
+    for (int axis = 0; axis < 3; ++axis) {
+      cells_[axis] = std::max(1, static_cast<int>(std::floor(box.length(axis) / size)));
+      cells_[axis] = std::min(cells_[axis], 1 << 12);
+      inv_size_[axis] = cells_[axis] / box.length(axis);
+      total *= cells_[axis];
+    }
+    if (total <= max_cells) break;
   }
 }
 

@@ -22,7 +22,9 @@ struct NeighborPairs {
 // found). `cell_order` receives the particles sorted by cell, for spatial re-sorting.
 class CellGrid {
  public:
-  void setup(const PeriodicBox& box, double cell_size);
+  // Cells at least `cell_size` wide; wider where the box would otherwise need more than
+  // max(32768, 4 x `particles`) of them.
+  void setup(const PeriodicBox& box, double cell_size, std::size_t particles);
   void bin(const std::vector<Vec3>& position);
   const std::vector<std::uint32_t>& cell_order() const { return order_; }
   void build_pairs(const ParticleStore& particles, const PeriodicBox& box, double skin, int threads,
