@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <new>
 #include <unistd.h>
 
 #include "grainflow/app/analyze_command.hpp"
@@ -192,6 +193,10 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const RunError& e) {
     std::cerr << "grainflow: run failed: " << e.what() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "grainflow: out of memory: the case needs more memory than this machine could give (fewer "
+                 "particles, or a smaller domain for the sampled fields); outputs written so far are complete\n";
     return 1;
   } catch (const std::exception& e) {
     std::cerr << "grainflow: error: " << e.what() << "\n";
