@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 PYTHON := /usr/bin/python3
 GRAINFLOW := build/release/grainflow
 
-.PHONY: all deps release debug demo test test-debug bench clean
+.PHONY: all deps release debug demo test test-debug bench fuzz clean
 
 all: release
 
@@ -31,6 +31,15 @@ test: release debug
 
 bench: release
 	./bench/run_bench.sh
+
+# libFuzzer over case files and particle files (clang, ASan + UBSan), FUZZ_SECONDS per target,
+# seeded with the bundled cases; findings land in build/fuzz/findings/. docs/ROBUSTNESS.md.
+FUZZ_SECONDS ?= 60
+fuzz:
+	./tools/install_deps.sh fuzz
+	cmake --preset fuzz
+	cmake --build --preset fuzz -j $(JOBS)
+	./tools/run_fuzz.sh $(FUZZ_SECONDS)
 
 clean:
 	rm -rf build

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages grainflow needs to build, test and plot.
+# Installs the Debian 12 packages grainflow needs to build, test and plot; with `fuzz`, also clang
+# with libFuzzer and its OpenMP runtime (for `make fuzz`, not needed by `make test`).
 # Idempotent: installs only what is missing; runs apt-get update first on a fresh machine.
+# Usage: tools/install_deps.sh [fuzz]
 set -euo pipefail
 
 packages=(
@@ -10,6 +12,7 @@ packages=(
   libfftw3-dev libhdf5-dev hdf5-tools
   python3-matplotlib python3-numpy python3-h5py python3-pil
 )
+if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev libomp-dev); fi
 
 missing=()
 for p in "${packages[@]}"; do

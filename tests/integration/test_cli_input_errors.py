@@ -134,6 +134,22 @@ def main():
         status, _, _ = run(exe, "frobnicate")
         check(status == 2, f"unknown subcommand exited {status}, expected 2")
 
+        # A particle file that is a device (it would never end): refused before reading, exit 2.
+        device = VALID.replace("count = 20", "count = 0") + '\n[particles]\ninit = "file"\nfile = "/dev/zero"\n'
+        path = write_text(os.path.join(tmp, "device.toml"), device.replace("[output]", "[output]", 1))
+        out_dir = os.path.join(tmp, "out_device")
+        status, _, err = run(exe, "run", path, "-o", out_dir, timeout=20)
+        check(status == 2 and "/dev/zero" in err and "not a regular file" in err,
+              f"particles.file = /dev/zero: exited {status}: {err.strip()}")
+        check(not os.path.exists(out_dir), "particles.file = /dev/zero: the output folder was created")
+
+        # A huge, nearly empty box (20 spheres in a 1 km cube) is legal: it runs, with a grid sized by
+        # the particles rather than the volume (it used to die of std::bad_alloc).
+        huge = VALID.replace("hi = [0.02, 0.05, 0.02]", "hi = [1000.0, 1000.0, 1000.0]")
+        path = write_text(os.path.join(tmp, "huge_box.toml"), huge)
+        status, _, err = run(exe, "run", path, "-o", os.path.join(tmp, "out_huge"), "--quiet", timeout=60)
+        check(status == 0, f"a 1 km box with 20 spheres: exited {status}: {err.strip()}")
+
     # --version
     status, out, err = run(exe, "--version")
     check(status == 0 and re.match(r"grainflow \d+\.\d+\.\d+", out.strip()) is not None,

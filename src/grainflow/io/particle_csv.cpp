@@ -3,6 +3,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 
@@ -29,8 +30,15 @@ std::vector<std::string_view> split(std::string_view line) {
 }  // namespace
 
 std::vector<InitialParticle> read_particle_csv(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))  // not a device or a pipe that never ends
+    throw InputError(path, "", std::filesystem::exists(path, error) ? "is not a regular file" : "cannot open the particle file");
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "cannot open the particle file");
+  return read_particle_csv(in, path);
+}
+
+std::vector<InitialParticle> read_particle_csv(std::istream& in, const std::string& path) {
   // `id` is accepted (and ignored) so that a run's final_state.csv can start another run.
   static const std::array<const char*, 12> known = {"id", "species", "x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz", "diameter"};
   std::map<std::string, int> column;  // name -> field index
