@@ -33,7 +33,7 @@ bench: release
 	./bench/run_bench.sh
 
 # libFuzzer over case files and particle files (clang, ASan + UBSan), FUZZ_SECONDS per target,
-# seeded with the bundled cases; findings land in build/fuzz/findings/. docs/ROBUSTNESS.md.
+# seeded with the bundled cases; findings land in build/fuzz/findings/ (docs/ROBUSTNESS.md).
 FUZZ_SECONDS ?= 60
 fuzz:
 	./tools/install_deps.sh fuzz
