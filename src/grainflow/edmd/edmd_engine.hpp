@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct EventCounters {
   long long wall_collisions = 0;
   long long cell_crossings = 0;
   long long stale = 0;           // events found invalid and re-predicted
+  long long list_rebuilds = 0;   // neighbour-list rebuilds (the list path has these instead of cell crossings)
   long long rolling_starts = 0;  // wall rebounds too slow to bounce: the particle rolls
   double virial = 0.0;           // sum over collisions of r_ij . J_i (kg m^2/s), for the pressure
   double dissipated = 0.0;       // J lost in collisions
@@ -66,8 +68,10 @@ class EdmdEngine {
     wall_normal_impulse_.assign(s_.walls.size(), 0.0);
     if (s_.servo.enabled) start_servo();
     shear_velocity_ = s_.lees_edwards_rate * s_.box.length(1);
+    lists_ = lists_apply();
     build_grid();
     sort_by_cell();
+    if (lists_) build_all_lists();
     for (std::size_t i = 0; i < n; ++i) predict(static_cast<std::uint32_t>(i));
     queue_.reset(n, &event_time_);
   }
@@ -142,6 +146,9 @@ class EdmdEngine {
     ParticleStore& p = s_.particles;
     for (std::size_t i = 0; i < p.size(); ++i) {
       advance(static_cast<std::uint32_t>(i), t);
+      // On the list path particles are wrapped only when their lists are rebuilt: the copy the
+      // outputs read must lie in the box (list centres and pair images do not depend on it).
+      if (lists_) s_.box.wrap(flight_[i].x, p.image[i]);
       p.position[i] = flight_[i].x;
       p.velocity[i] = flight_[i].v;
     }
@@ -161,7 +168,7 @@ class EdmdEngine {
   }
 
  private:
-  enum class Kind : std::uint8_t { none, pair, wall, cell };
+  enum class Kind : std::uint8_t { none, pair, wall, cell, expiry };
   struct Event {
     Kind kind = Kind::none;
     std::int8_t detail = 0;          // wall index, or cell face (axis * 2 + side)
@@ -197,8 +204,9 @@ class EdmdEngine {
   void build_grid() {
     const std::size_t n = s_.particles.size();
     const double margin = s_.servo.enabled && s_.servo.scale_width ? 1.1 : 1.0;
+    const double width = lists_ ? list_cell_width() : margin * max_diameter_;
     for (int a = 0; a < 3; ++a) {
-      cells_[a] = a < Dim ? std::max(1, static_cast<int>(std::floor(s_.box.length(a) / (margin * max_diameter_)))) : 1;
+      cells_[a] = a < Dim ? std::max(1, static_cast<int>(std::floor(s_.box.length(a) / width))) : 1;
       cells_[a] = std::min(cells_[a], 1 << 11);
       cell_size_[a] = s_.box.length(a) / cells_[a];
     }
@@ -302,6 +310,10 @@ class EdmdEngine {
 
   // Finds i's next event from time s_.time (i must be current).
   void predict(std::uint32_t i) {
+    if (lists_) {
+      predict_listed(i);
+      return;
+    }
     const ParticleStore& p = s_.particles;
     const double now = s_.time;
     double best = kNever;
@@ -414,6 +426,180 @@ class EdmdEngine {
     event_time_[i] = now + best;
   }
 
+  // ---- Neighbour lists (the fast path) ----
+  // Without gravity, Lees–Edwards boundaries or a servo-controlled width every particle flies in a
+  // straight line, and each one keeps a list of the particles that it can meet: particle i stays
+  // within `shell_` of its list centre c_i (its position when the list was built) until an "expiry"
+  // event, when its list is rebuilt around where it is then. Two particles whose centres lie more
+  // than r_i + r_j + 2 shell apart cannot touch before one of them expires, so i looks for
+  // collisions with its list only (about a third of the 27 cells' particles) and crosses no cells.
+  // Lists are symmetric: rebuilding i's list removes i from its old neighbours' lists and adds it
+  // to its new ones', so a pair is always seen by whichever of the two changes course first. The
+  // cell grid (cells >= max diameter + 2 shell) holds the particles by centre, for rebuilds only.
+  static constexpr double kShellFraction = 0.15;  // shell / max diameter, chosen by measurement
+
+  double list_cell_width() const { return max_diameter_ + 2.0 * shell_ * (1.0 + 1e-9); }
+
+  bool lists_apply() {
+    const std::size_t n = s_.particles.size();
+    if (n == 0 || s_.servo.enabled || shear_velocity_ != 0.0 || s_.lees_edwards_rate != 0.0) return false;
+    if (!(s_.gravity == Vec3{})) return false;
+    shell_ = (std::getenv("GF_SHELL") ? std::atof(std::getenv("GF_SHELL")) : kShellFraction) * max_diameter_;
+    if (!(shell_ > 0.0)) return false;
+    for (int a = 0; a < 3; ++a) {
+      period_[a] = inv_period_[a] = 0.0;
+      if (a < Dim && s_.box.periodic[a]) {
+        // Three cells per periodic axis: the 27 searched cells are distinct and the nearest image
+        // of any two particles within reach of each other is unique.
+        if (s_.box.length(a) < 3.0 * list_cell_width()) return false;
+        period_[a] = s_.box.length(a);
+        inv_period_[a] = 1.0 / s_.box.length(a);
+      }
+    }
+    return true;
+  }
+
+  // Nearest periodic image of a separation (no-op along walled axes and z in 2D).
+  Vec3 nearest(Vec3 d) const {
+    for (int a = 0; a < Dim; ++a) d[a] -= period_[a] * std::nearbyint(d[a] * inv_period_[a]);
+    return d;
+  }
+
+  void build_all_lists() {
+    const std::size_t n = s_.particles.size();
+    center_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) center_[i] = flight_[i].x;  // build_grid wrapped them
+    list_cap_ = 16;
+    list_count_.assign(n, 0);
+    list_.assign(n * list_cap_, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      search_neighbors(static_cast<std::uint32_t>(i), [&](std::uint32_t j) {
+        if (j > i) {
+          push_neighbor(static_cast<std::uint32_t>(i), j);
+          push_neighbor(j, static_cast<std::uint32_t>(i));
+        }
+      });
+  }
+
+  // Calls found(j) for every other particle whose centre lies within reach of i's.
+  template <class Found>
+  void search_neighbors(std::uint32_t i, Found&& found) {
+    const Vec3 ci = center_[i];
+    const double ri = radius(static_cast<int>(i));
+    const auto c = cell_coordinates(cell_[i]);
+    const int span_z = Dim == 3 ? 1 : 0;
+    for (int dz = -span_z; dz <= span_z; ++dz) {
+      int cz = c[2] + dz, sz = 0;
+      if (!wrap_cell(2, cz, sz)) continue;
+      for (int dy = -1; dy <= 1; ++dy) {
+        int cy = c[1] + dy, sy = 0;
+        if (!wrap_cell(1, cy, sy)) continue;
+        for (int dx = -1; dx <= 1; ++dx) {
+          int cx = c[0] + dx, sx = 0;
+          if (!wrap_cell(0, cx, sx)) continue;
+          for (int j = head_[cx + cells_[0] * (cy + cells_[1] * cz)]; j >= 0; j = flight_[j].next) {
+            if (static_cast<std::uint32_t>(j) == i) continue;
+            const double reach = ri + radius(j) + 2.0 * shell_ * (1.0 + 1e-9);
+            if (norm2(nearest(ci - center_[j])) < reach * reach) found(static_cast<std::uint32_t>(j));
+          }
+        }
+      }
+    }
+  }
+
+  void push_neighbor(std::uint32_t i, std::uint32_t j) {
+    if (list_count_[i] == list_cap_) grow_lists();
+    list_[static_cast<std::size_t>(i) * list_cap_ + list_count_[i]++] = j;
+  }
+
+  void grow_lists() {
+    const std::size_t n = list_count_.size(), cap = 2 * list_cap_;
+    std::vector<std::uint32_t> wider(n * cap);
+    for (std::size_t i = 0; i < n; ++i)
+      std::copy_n(list_.begin() + static_cast<std::ptrdiff_t>(i * list_cap_), list_count_[i],
+                  wider.begin() + static_cast<std::ptrdiff_t>(i * cap));
+    list_.swap(wider);
+    list_cap_ = cap;
+  }
+
+  // Particle i has reached the edge of its shell (and is current): a new list around where it is.
+  void rebuild_list(std::uint32_t i) {
+    ++counters_.list_rebuilds;
+    std::uint32_t* mine = &list_[static_cast<std::size_t>(i) * list_cap_];
+    for (std::uint32_t k = 0; k < list_count_[i]; ++k) {
+      const std::uint32_t j = mine[k];
+      std::uint32_t* theirs = &list_[static_cast<std::size_t>(j) * list_cap_];
+      std::uint32_t m = 0;
+      while (theirs[m] != i) ++m;
+      theirs[m] = theirs[--list_count_[j]];
+    }
+    list_count_[i] = 0;
+    s_.box.wrap(flight_[i].x, s_.particles.image[i]);
+    center_[i] = flight_[i].x;
+    unlink(static_cast<int>(i));
+    cell_[i] = cell_of(center_[i]);
+    link(static_cast<int>(i));
+    search_neighbors(i, [&](std::uint32_t j) {
+      push_neighbor(i, j);
+      push_neighbor(j, i);
+    });
+  }
+
+  // predict() on the list path: the earliest of i's shell expiry, a collision with a listed
+  // neighbour and a wall.
+  void predict_listed(std::uint32_t i) {
+    const double now = s_.time;
+    const Vec3 xi = flight_[i].x;
+    const Vec3 vi = flight_[i].v;
+    const double ri = radius(static_cast<int>(i));
+    Event e{Kind::expiry, 0, 0, 0};
+    double best;
+    {  // |d + v t| = shell, with d = x_i - c_i inside the shell: the positive root
+      const Vec3 d = nearest(xi - center_[i]);
+      const double c = norm2(d) - shell_ * shell_;
+      const double b = dot(d, vi);
+      const double a = norm2(vi);
+      if (c >= 0.0) best = 0.0;
+      else if (a == 0.0) best = kNever;
+      else {
+        const double root = std::sqrt(b * b - a * c);
+        best = b > 0.0 ? -c / (b + root) : (root - b) / a;
+      }
+    }
+    const double speed_i = norm(vi);
+    const std::uint32_t* list = &list_[static_cast<std::size_t>(i) * list_cap_];
+    const std::uint32_t count = list_count_[i];
+    for (std::uint32_t k = 0; k < count; ++k) __builtin_prefetch(&flight_[list[k]]);
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const std::uint32_t j = list[k];
+      const Flight& fj = flight_[j];
+      const Vec3 xj = fj.x + (now - fj.clock) * fj.v;
+      const Vec3 d = nearest(xi - xj);
+      const Vec3 dv = vi - fj.v;
+      auto floor = [&] { return kVelocityResolution * (speed_i + norm(fj.v)); };
+      const double t = (rolling_count_ == 0 || (!rolls(i) && !rolls(j)))
+                           ? contact_time_before(d, dv, ri + radius(static_cast<int>(j)), best, floor)
+                           : contact_time_accelerated(d, dv, Vec3{}, ri + radius(static_cast<int>(j)), best, floor());
+      if (t < best) {
+        best = t;
+        e = Event{Kind::pair, 0, j, fj.count};
+      }
+    }
+    for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+      if (rolls(i) && rolling_[i] == static_cast<int>(w)) continue;
+      const EdmdWall& wall = s_.walls[w];
+      const int a = wall.axis;
+      const double gap = wall.inward * (xi[a] - wall.at(now)) - ri;
+      const double t = closing_time(gap, wall.inward * (vi[a] - wall.velocity[a]), 0.0);
+      if (t < best) {
+        best = t;
+        e = Event{Kind::wall, static_cast<std::int8_t>(w), 0, 0};
+      }
+    }
+    event_[i] = e;
+    event_time_[i] = now + best;
+  }
+
   bool wrap_cell(int axis, int& c, int& shift) const {
     if (c >= 0 && c < cells_[axis]) return true;
     if (!s_.box.periodic[axis]) return false;
@@ -463,6 +649,10 @@ class EdmdEngine {
       case Kind::cell:
         advance(i, s_.time);
         cross_cell(i, e.detail / 2, e.detail % 2 == 1);
+        break;
+      case Kind::expiry:
+        advance(i, s_.time);
+        rebuild_list(i);
         break;
       case Kind::none:
         break;
@@ -732,6 +922,13 @@ class EdmdEngine {
   long long servo_collisions_ = 0;
   ServoState servo_state_;
   std::vector<Flight> flight_;
+  bool lists_ = false;                   // the neighbour-list path is in use
+  double shell_ = 0.0;                   // m, how far a particle moves from its list centre before a rebuild
+  Vec3 period_, inv_period_;             // box lengths along periodic axes (0 elsewhere) and inverses
+  std::vector<Vec3> center_;             // list centres
+  std::vector<std::uint32_t> list_;      // list_cap_ slots per particle
+  std::vector<std::uint32_t> list_count_;
+  std::size_t list_cap_ = 0;
   std::vector<int> rolling_;  // wall a particle rolls on, -1 when free
   long long rolling_count_ = 0;  // particles rolling now: while 0, nobody reads rolling_
   RestitutionLaw elastic_;              // e = 1: TC collisions are elastic and smooth (no dissipation at all)
