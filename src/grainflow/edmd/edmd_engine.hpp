@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <new>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -469,9 +470,16 @@ class EdmdEngine {
     const std::size_t n = s_.particles.size();
     center_.resize(n);
     for (std::size_t i = 0; i < n; ++i) center_[i] = flight_[i].x;  // build_grid wrapped them
+    inside_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) inside_[i] = far_from_faces(static_cast<std::uint32_t>(i));
+    slot_cap_ = 8;
+    slot_count_.assign(head_.size(), 0);
+    slots_.assign(head_.size() * slot_cap_, Slot{});
+    slot_of_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) insert_slot(static_cast<std::uint32_t>(i));
     list_cap_ = 16;
-    list_count_.assign(n, 0);
     list_.assign(n * list_cap_, 0);
+    kept_.resize(list_cap_);
     for (std::size_t i = 0; i < n; ++i)
       search_neighbors(static_cast<std::uint32_t>(i), [&](std::uint32_t j) {
         if (j > i) {
@@ -481,11 +489,14 @@ class EdmdEngine {
       });
   }
 
-  // Calls found(j) for every other particle whose centre lies within reach of i's.
+  // Calls found(j) for every other particle whose centre lies within reach of i's. Each cell keeps
+  // its particles' centres side by side, and a periodic neighbour cell is seen through its shift.
   template <class Found>
   void search_neighbors(std::uint32_t i, Found&& found) {
     const Vec3 ci = center_[i];
     const double ri = radius(static_cast<int>(i));
+    const double skin = 2.0 * shell_ * (1.0 + 1e-9);
+    const double uniform_reach = 2.0 * uniform_radius_ + skin;
     const auto c = cell_coordinates(cell_[i]);
     const int span_z = Dim == 3 ? 1 : 0;
     for (int dz = -span_z; dz <= span_z; ++dz) {
@@ -497,52 +508,102 @@ class EdmdEngine {
         for (int dx = -1; dx <= 1; ++dx) {
           int cx = c[0] + dx, sx = 0;
           if (!wrap_cell(0, cx, sx)) continue;
-          for (int j = head_[cx + cells_[0] * (cy + cells_[1] * cz)]; j >= 0; j = flight_[j].next) {
-            if (static_cast<std::uint32_t>(j) == i) continue;
-            const double reach = ri + radius(j) + 2.0 * shell_ * (1.0 + 1e-9);
-            if (norm2(nearest(ci - center_[j])) < reach * reach) found(static_cast<std::uint32_t>(j));
+          // ci - (cj + shift) = (ci - shift) - cj
+          const Vec3 from{ci.x - sx * period_[0], ci.y - sy * period_[1], ci.z - sz * period_[2]};
+          const std::size_t cell = static_cast<std::size_t>(cx + cells_[0] * (cy + cells_[1] * cz));
+          const Slot* slot = &slots_[cell * slot_cap_];
+          const std::uint32_t count = slot_count_[cell];
+          for (std::uint32_t k = 0; k < count; ++k) {
+            const Vec3 d{from.x - slot[k].x, from.y - slot[k].y, from.z - slot[k].z};
+            const double reach = uniform_radius_ > 0.0 ? uniform_reach : ri + radius(static_cast<int>(slot[k].id)) + skin;
+            if (norm2(d) < reach * reach && slot[k].id != i) found(slot[k].id);
           }
         }
       }
     }
   }
 
+  void insert_slot(std::uint32_t i) {
+    const std::size_t cell = static_cast<std::size_t>(cell_[i]);
+    if (slot_count_[cell] == slot_cap_) grow_slots();
+    const std::uint32_t k = slot_count_[cell]++;
+    slots_[cell * slot_cap_ + k] = Slot{center_[i].x, center_[i].y, center_[i].z, i};
+    slot_of_[i] = k;
+  }
+
+  void remove_slot(std::uint32_t i) {
+    const std::size_t cell = static_cast<std::size_t>(cell_[i]);
+    Slot* slot = &slots_[cell * slot_cap_];
+    const std::uint32_t last = --slot_count_[cell];
+    slot[slot_of_[i]] = slot[last];
+    slot_of_[slot[last].id] = slot_of_[i];
+  }
+
+  void grow_slots() {
+    const std::size_t cells = slot_count_.size(), cap = 2 * slot_cap_;
+    std::vector<Slot> wider(cells * cap);
+    for (std::size_t c = 0; c < cells; ++c)
+      std::copy_n(slots_.begin() + static_cast<std::ptrdiff_t>(c * slot_cap_), slot_count_[c],
+                  wider.begin() + static_cast<std::ptrdiff_t>(c * cap));
+    slots_.swap(wider);
+    slot_cap_ = cap;
+  }
+
+  // A list is list_cap_ words (a 64-byte line at first): its length, then the neighbours.
+  std::uint32_t* list_of(std::uint32_t i) { return list_.data() + static_cast<std::size_t>(i) * list_cap_; }
+
+  // True when i's centre lies so far inside the box along every periodic axis that no particle it
+  // can meet is seen through a periodic face: a neighbour's centre is within reach (< 2 max radius
+  // + 2 shell) of i's, and any particle strays at most a shell from its centre (synchronize() may
+  // wrap one that strayed across a face, which needs its centre within a shell of that face).
+  bool far_from_faces(std::uint32_t i) const {
+    const double margin = (max_diameter_ + 4.0 * shell_) * (1.0 + 1e-6);
+    for (int a = 0; a < Dim; ++a)
+      if (period_[a] != 0.0 && (center_[i][a] - s_.box.lo[a] < margin || s_.box.hi[a] - center_[i][a] < margin)) return false;
+    return true;
+  }
+
   void push_neighbor(std::uint32_t i, std::uint32_t j) {
-    if (list_count_[i] == list_cap_) grow_lists();
-    list_[static_cast<std::size_t>(i) * list_cap_ + list_count_[i]++] = j;
+    if (list_of(i)[0] + 1 == list_cap_) grow_lists();
+    std::uint32_t* list = list_of(i);
+    list[++list[0]] = j;
   }
 
   void grow_lists() {
-    const std::size_t n = list_count_.size(), cap = 2 * list_cap_;
-    std::vector<std::uint32_t> wider(n * cap);
+    const std::size_t n = s_.particles.size(), cap = 2 * list_cap_;
+    AlignedWords wider(n * cap);
     for (std::size_t i = 0; i < n; ++i)
-      std::copy_n(list_.begin() + static_cast<std::ptrdiff_t>(i * list_cap_), list_count_[i],
+      std::copy_n(list_.begin() + static_cast<std::ptrdiff_t>(i * list_cap_), list_[i * list_cap_] + 1,
                   wider.begin() + static_cast<std::ptrdiff_t>(i * cap));
     list_.swap(wider);
     list_cap_ = cap;
+    kept_.resize(cap);
   }
 
   // Particle i has reached the edge of its shell (and is current): a new list around where it is.
-  void rebuild_list(std::uint32_t i) {
+  [[gnu::noinline]] void rebuild_list(std::uint32_t i) {
     ++counters_.list_rebuilds;
-    std::uint32_t* mine = &list_[static_cast<std::size_t>(i) * list_cap_];
-    for (std::uint32_t k = 0; k < list_count_[i]; ++k) {
-      const std::uint32_t j = mine[k];
-      std::uint32_t* theirs = &list_[static_cast<std::size_t>(j) * list_cap_];
-      std::uint32_t m = 0;
+    // Old neighbours forget i (their lists fetched together, not one miss after another).
+    std::uint32_t* mine = list_of(i);
+    for (std::uint32_t k = 1; k <= mine[0]; ++k) __builtin_prefetch(list_of(mine[k]), 1);
+    for (std::uint32_t k = 1; k <= mine[0]; ++k) {
+      std::uint32_t* theirs = list_of(mine[k]);
+      std::uint32_t m = 1;
       while (theirs[m] != i) ++m;
-      theirs[m] = theirs[--list_count_[j]];
+      theirs[m] = theirs[theirs[0]--];
     }
-    list_count_[i] = 0;
+    mine[0] = 0;
     s_.box.wrap(flight_[i].x, s_.particles.image[i]);
+    remove_slot(i);
     center_[i] = flight_[i].x;
-    unlink(static_cast<int>(i));
     cell_[i] = cell_of(center_[i]);
-    link(static_cast<int>(i));
+    inside_[i] = far_from_faces(i);
+    insert_slot(i);
     search_neighbors(i, [&](std::uint32_t j) {
+      __builtin_prefetch(list_of(j), 1);
       push_neighbor(i, j);
-      push_neighbor(j, i);
     });
+    for (std::uint32_t k = 1; k <= list_of(i)[0]; ++k) push_neighbor(list_of(i)[k], i);
   }
 
   // predict() on the list path: the earliest of i's shell expiry, a collision with a listed
@@ -567,22 +628,54 @@ class EdmdEngine {
       }
     }
     const double speed_i = norm(vi);
-    const std::uint32_t* list = &list_[static_cast<std::size_t>(i) * list_cap_];
-    const std::uint32_t count = list_count_[i];
+    const std::uint32_t* list = list_of(i) + 1;
+    const std::uint32_t count = list[-1];
+    const bool inside = inside_[i] != 0;
     for (std::uint32_t k = 0; k < count; ++k) __builtin_prefetch(&flight_[list[k]]);
-    for (std::uint32_t k = 0; k < count; ++k) {
-      const std::uint32_t j = list[k];
-      const Flight& fj = flight_[j];
+    auto separation = [&](const Flight& fj) {
       const Vec3 xj = fj.x + (now - fj.clock) * fj.v;
-      const Vec3 d = nearest(xi - xj);
-      const Vec3 dv = vi - fj.v;
-      auto floor = [&] { return kVelocityResolution * (speed_i + norm(fj.v)); };
-      const double t = (rolling_count_ == 0 || (!rolls(i) && !rolls(j)))
-                           ? contact_time_before(d, dv, ri + radius(static_cast<int>(j)), best, floor)
-                           : contact_time_accelerated(d, dv, Vec3{}, ri + radius(static_cast<int>(j)), best, floor());
-      if (t < best) {
-        best = t;
-        e = Event{Kind::pair, 0, j, fj.count};
+      return inside ? xi - xj : nearest(xi - xj);
+    };
+    if (rolling_count_ == 0 && uniform_radius_ > 0.0) {
+      // Two passes: the first, without branches on the (random) signs, keeps the neighbours that
+      // approach and could touch before the best time so far (the test of contact_time_before(),
+      // against the shell expiry); the second solves the few kept exactly.
+      const double sigma2 = 4.0 * uniform_radius_ * uniform_radius_;
+      const double horizon = -2.0 * best * (1.0 + 1e-9);
+      std::uint32_t* kept = kept_.data();  // list_cap_ long
+      std::uint32_t m = 0;
+      for (std::uint32_t k = 0; k < count; ++k) {
+        const Flight& fj = flight_[list[k]];
+        const Vec3 d = separation(fj);
+        const double b = dot(d, vi - fj.v);
+        const double c = norm2(d) - sigma2;
+        kept[m] = list[k];
+        m += (b < 0.0) & (c <= b * horizon);
+      }
+      for (std::uint32_t q = 0; q < m; ++q) {
+        const std::uint32_t j = kept[q];
+        const Flight& fj = flight_[j];
+        auto floor = [&] { return kVelocityResolution * (speed_i + norm(fj.v)); };
+        const double t = contact_time_before(separation(fj), vi - fj.v, 2.0 * uniform_radius_, best, floor);
+        if (t < best) {
+          best = t;
+          e = Event{Kind::pair, 0, j, fj.count};
+        }
+      }
+    } else {
+      for (std::uint32_t k = 0; k < count; ++k) {
+        const std::uint32_t j = list[k];
+        const Flight& fj = flight_[j];
+        const Vec3 d = separation(fj);
+        const Vec3 dv = vi - fj.v;
+        auto floor = [&] { return kVelocityResolution * (speed_i + norm(fj.v)); };
+        const double t = (rolling_count_ == 0 || (!rolls(i) && !rolls(j)))
+                             ? contact_time_before(d, dv, ri + radius(static_cast<int>(j)), best, floor)
+                             : contact_time_accelerated(d, dv, Vec3{}, ri + radius(static_cast<int>(j)), best, floor());
+        if (t < best) {
+          best = t;
+          e = Event{Kind::pair, 0, j, fj.count};
+        }
       }
     }
     for (std::size_t w = 0; w < s_.walls.size(); ++w) {
@@ -926,9 +1019,28 @@ class EdmdEngine {
   double shell_ = 0.0;                   // m, how far a particle moves from its list centre before a rebuild
   Vec3 period_, inv_period_;             // box lengths along periodic axes (0 elsewhere) and inverses
   std::vector<Vec3> center_;             // list centres
-  std::vector<std::uint32_t> list_;      // list_cap_ slots per particle
-  std::vector<std::uint32_t> list_count_;
+  std::vector<std::uint8_t> inside_;     // far_from_faces() at the last rebuild
+  template <class T>
+  struct LineAllocator {  // 64-byte aligned storage, so each list starts on a cache line
+    using value_type = T;
+    LineAllocator() = default;
+    template <class U>
+    LineAllocator(const LineAllocator<U>&) {}
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{64})); }
+    void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t{64}); }
+    bool operator==(const LineAllocator&) const { return true; }
+  };
+  using AlignedWords = std::vector<std::uint32_t, LineAllocator<std::uint32_t>>;
+  std::vector<std::uint32_t> kept_;      // predict_listed()'s scratch: the neighbours worth solving for
+  AlignedWords list_;                    // list_cap_ words per particle: count, then neighbours
   std::size_t list_cap_ = 0;
+  struct Slot {
+    double x, y, z;  // list centre
+    std::uint32_t id;
+  };
+  std::vector<Slot> slots_;              // slot_cap_ per cell: the centres in each cell, for rebuilds
+  std::vector<std::uint32_t> slot_count_, slot_of_;
+  std::size_t slot_cap_ = 0;
   std::vector<int> rolling_;  // wall a particle rolls on, -1 when free
   long long rolling_count_ = 0;  // particles rolling now: while 0, nobody reads rolling_
   RestitutionLaw elastic_;              // e = 1: TC collisions are elastic and smooth (no dissipation at all)
