@@ -473,6 +473,7 @@ class EdmdEngine {
     inside_.resize(n);
     for (std::size_t i = 0; i < n; ++i) inside_[i] = far_from_faces(static_cast<std::uint32_t>(i));
     slot_cap_ = 8;
+    found_.resize(slot_cap_);
     slot_count_.assign(head_.size(), 0);
     slots_.assign(head_.size() * slot_cap_, Slot{});
     slot_of_.assign(n, 0);
@@ -513,9 +514,20 @@ class EdmdEngine {
           const std::size_t cell = static_cast<std::size_t>(cx + cells_[0] * (cy + cells_[1] * cz));
           const Slot* slot = &slots_[cell * slot_cap_];
           const std::uint32_t count = slot_count_[cell];
+          if (uniform_radius_ > 0.0) {  // without branches on the (random) outcome
+            std::uint32_t* near = found_.data();
+            std::uint32_t m = 0;
+            for (std::uint32_t k = 0; k < count; ++k) {
+              const Vec3 d{from.x - slot[k].x, from.y - slot[k].y, from.z - slot[k].z};
+              near[m] = slot[k].id;
+              m += (norm2(d) < uniform_reach * uniform_reach) & (slot[k].id != i);
+            }
+            for (std::uint32_t q = 0; q < m; ++q) found(near[q]);
+            continue;
+          }
           for (std::uint32_t k = 0; k < count; ++k) {
             const Vec3 d{from.x - slot[k].x, from.y - slot[k].y, from.z - slot[k].z};
-            const double reach = uniform_radius_ > 0.0 ? uniform_reach : ri + radius(static_cast<int>(slot[k].id)) + skin;
+            const double reach = ri + radius(static_cast<int>(slot[k].id)) + skin;
             if (norm2(d) < reach * reach && slot[k].id != i) found(slot[k].id);
           }
         }
@@ -547,6 +559,7 @@ class EdmdEngine {
                   wider.begin() + static_cast<std::ptrdiff_t>(c * cap));
     slots_.swap(wider);
     slot_cap_ = cap;
+    found_.resize(cap);
   }
 
   // A list is list_cap_ words (a 64-byte line at first): its length, then the neighbours.
@@ -1041,6 +1054,7 @@ class EdmdEngine {
   std::vector<Slot> slots_;              // slot_cap_ per cell: the centres in each cell, for rebuilds
   std::vector<std::uint32_t> slot_count_, slot_of_;
   std::size_t slot_cap_ = 0;
+  std::vector<std::uint32_t> found_;     // search_neighbors()' scratch, slot_cap_ long
   std::vector<int> rolling_;  // wall a particle rolls on, -1 when free
   long long rolling_count_ = 0;  // particles rolling now: while 0, nobody reads rolling_
   RestitutionLaw elastic_;              // e = 1: TC collisions are elastic and smooth (no dissipation at all)
