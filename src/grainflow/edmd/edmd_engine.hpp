@@ -53,7 +53,8 @@ class EdmdEngine {
   static_assert(Dim == 2 || Dim == 3);
 
  public:
-  explicit EdmdEngine(EdmdState state) : s_(std::move(state)) {
+  // `neighbor_lists` = false keeps the cell search where the list path would apply (for tests).
+  explicit EdmdEngine(EdmdState state, bool neighbor_lists = true) : s_(std::move(state)) {
     const ParticleStore& p = s_.particles;
     const std::size_t n = p.size();
     last_collision_.assign(n, -kNever);
@@ -69,7 +70,7 @@ class EdmdEngine {
     wall_normal_impulse_.assign(s_.walls.size(), 0.0);
     if (s_.servo.enabled) start_servo();
     shear_velocity_ = s_.lees_edwards_rate * s_.box.length(1);
-    lists_ = lists_apply();
+    lists_ = neighbor_lists && lists_apply();
     build_grid();
     sort_by_cell();
     if (lists_) build_all_lists();
@@ -80,6 +81,9 @@ class EdmdEngine {
   EdmdState& state() { return s_; }
   const EdmdState& state() const { return s_; }
   EventCounters& counters() { return counters_; }
+  // Whether particles search their neighbour lists (straight flights: no gravity, Lees–Edwards or
+  // servo) rather than the 27 cells around them.
+  bool neighbor_lists() const { return lists_; }
   const ServoState& servo() const { return servo_state_; }
 
   // Reports every later collision to `observer` (nullptr: none). The engine does not own it.
