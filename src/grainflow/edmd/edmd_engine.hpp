@@ -489,6 +489,10 @@ class EdmdEngine {
     inside_.resize(n);
     for (std::size_t i = 0; i < n; ++i) inside_[i] = far_from_faces(static_cast<std::uint32_t>(i));
     slot_cap_ = 8;
+    // Coordinates within [-shell, L + shell) rounded to float: each off by 2^-24 of that at most.
+    double extent = 0.0;
+    for (int a = 0; a < Dim; ++a) extent = std::max(extent, s_.box.length(a) + shell_);
+    slot_rounding_ = 4.0 * extent * 1e-7;
     found_.resize(slot_cap_);
     slot_count_.assign(head_.size(), 0);
     slots_.assign(head_.size() * slot_cap_, Slot{});
@@ -506,13 +510,15 @@ class EdmdEngine {
       });
   }
 
-  // Calls found(j) for every other particle whose centre lies within reach of i's. Each cell keeps
-  // its particles' centres side by side, and a periodic neighbour cell is seen through its shift.
+  // Calls found(j) for every other particle whose centre lies within reach of i's (and perhaps a
+  // few just beyond: the cells keep centres in single precision, so the reach has a margin for
+  // their rounding). Each cell keeps its particles' centres side by side, and a periodic neighbour
+  // cell is seen through its shift.
   template <class Found>
   void search_neighbors(std::uint32_t i, Found&& found) {
-    const Vec3 ci = center_[i];
+    const Vec3 ci = center_[i] - s_.box.lo;
     const double ri = radius(static_cast<int>(i));
-    const double skin = 2.0 * shell_ * (1.0 + 1e-9);
+    const double skin = 2.0 * shell_ * (1.0 + 1e-9) + slot_rounding_;
     const double uniform_reach = 2.0 * uniform_radius_ + skin;
     const auto c = cell_coordinates(cell_[i]);
     const int span_z = Dim == 3 ? 1 : 0;
@@ -555,7 +561,8 @@ class EdmdEngine {
     const std::size_t cell = static_cast<std::size_t>(cell_[i]);
     if (slot_count_[cell] == slot_cap_) grow_slots();
     const std::uint32_t k = slot_count_[cell]++;
-    slots_[cell * slot_cap_ + k] = Slot{center_[i].x, center_[i].y, center_[i].z, i};
+    const Vec3 x = center_[i] - s_.box.lo;
+    slots_[cell * slot_cap_ + k] = Slot{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z), i};
     slot_of_[i] = k;
   }
 
@@ -568,7 +575,7 @@ class EdmdEngine {
   }
 
   void grow_slots() {
-    const std::size_t cells = slot_count_.size(), cap = 2 * slot_cap_;
+    const std::size_t cells = slot_count_.size(), cap = slot_cap_ + 4;
     std::vector<Slot> wider(cells * cap);
     for (std::size_t c = 0; c < cells; ++c)
       std::copy_n(slots_.begin() + static_cast<std::ptrdiff_t>(c * slot_cap_), slot_count_[c],
@@ -1063,8 +1070,9 @@ class EdmdEngine {
   std::vector<std::uint32_t> kept_;      // predict_listed()'s scratch: the neighbours worth solving for
   AlignedWords list_;                    // list_cap_ words per particle: count, then neighbours
   std::size_t list_cap_ = 0;
+  double slot_rounding_ = 0.0;           // m, bound on the error of a distance between centres in slots
   struct Slot {
-    double x, y, z;  // list centre
+    float x, y, z;  // list centre, from the box's low corner (16 bytes a slot)
     std::uint32_t id;
   };
   std::vector<Slot> slots_;              // slot_cap_ per cell: the centres in each cell, for rebuilds
