@@ -9,6 +9,9 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 #include <new>
 #include <numbers>
 #include <cstdio>
@@ -492,10 +495,12 @@ class EdmdEngine {
     // Coordinates within [-shell, L + shell) rounded to float: each off by 2^-24 of that at most.
     double extent = 0.0;
     for (int a = 0; a < Dim; ++a) extent = std::max(extent, s_.box.length(a) + shell_);
-    slot_rounding_ = 4.0 * extent * 1e-7;
+    // Distances are also taken in single precision: a margin of 1e-6 of the extent covers both.
+    slot_rounding_ = 1e-6 * (extent + 2.0 * max_diameter_);
     found_.resize(slot_cap_);
     slot_count_.assign(head_.size(), 0);
-    slots_.assign(head_.size() * slot_cap_, Slot{});
+    slot_x_.assign(head_.size() * slot_cap_ * 3, kFarSlot);
+    slot_id_.assign(head_.size() * slot_cap_, 0);
     slot_of_.assign(n, 0);
     for (std::size_t i = 0; i < n; ++i) insert_slot(static_cast<std::uint32_t>(i));
     list_cap_ = 16;
@@ -511,17 +516,20 @@ class EdmdEngine {
   }
 
   // Calls found(j) for every other particle whose centre lies within reach of i's (and perhaps a
-  // few just beyond: the cells keep centres in single precision, so the reach has a margin for
-  // their rounding). Each cell keeps its particles' centres side by side, and a periodic neighbour
-  // cell is seen through its shift.
+  // few just beyond: the cells keep centres in single precision and distances are taken in it, so
+  // the reach has a margin for their rounding). Each cell keeps its particles' centres side by side,
+  // x, y and z each in a row of slot_cap_ floats (unused slots far away), so that eight are tested
+  // at once; a periodic neighbour cell is seen through its shift.
   template <class Found>
   void search_neighbors(std::uint32_t i, Found&& found) {
     const Vec3 ci = center_[i] - s_.box.lo;
     const double ri = radius(static_cast<int>(i));
     const double skin = 2.0 * shell_ * (1.0 + 1e-9) + slot_rounding_;
     const double uniform_reach = 2.0 * uniform_radius_ + skin;
+    const float reach2 = static_cast<float>(uniform_reach * uniform_reach);
     const auto c = cell_coordinates(cell_[i]);
     const int span_z = Dim == 3 ? 1 : 0;
+    const std::size_t cap = slot_cap_;
     for (int dz = -span_z; dz <= span_z; ++dz) {
       int cz = c[2] + dz, sz = 0;
       if (!wrap_cell(2, cz, sz)) continue;
@@ -534,23 +542,41 @@ class EdmdEngine {
           // ci - (cj + shift) = (ci - shift) - cj
           const Vec3 from{ci.x - sx * period_[0], ci.y - sy * period_[1], ci.z - sz * period_[2]};
           const std::size_t cell = static_cast<std::size_t>(cx + cells_[0] * (cy + cells_[1] * cz));
-          const Slot* slot = &slots_[cell * slot_cap_];
+          const float* x = &slot_x_[cell * cap * 3];
+          const std::uint32_t* id = &slot_id_[cell * cap];
           const std::uint32_t count = slot_count_[cell];
-          if (uniform_radius_ > 0.0) {  // without branches on the (random) outcome
-            std::uint32_t* near = found_.data();
+          if (uniform_radius_ > 0.0) {
+#if defined(__AVX__)
+            const __m256 fx = _mm256_set1_ps(static_cast<float>(from.x)), fy = _mm256_set1_ps(static_cast<float>(from.y)),
+                         fz = _mm256_set1_ps(static_cast<float>(from.z)), r2 = _mm256_set1_ps(reach2);
+            for (std::uint32_t k = 0; k < count; k += 8) {
+              const __m256 ex = _mm256_sub_ps(fx, _mm256_loadu_ps(x + k));
+              const __m256 ey = _mm256_sub_ps(fy, _mm256_loadu_ps(x + cap + k));
+              const __m256 ez = _mm256_sub_ps(fz, _mm256_loadu_ps(x + 2 * cap + k));
+              const __m256 d2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ex, ex), _mm256_mul_ps(ey, ey)), _mm256_mul_ps(ez, ez));
+              for (unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d2, r2, _CMP_LT_OQ))); bits != 0;
+                   bits &= bits - 1) {
+                const std::uint32_t j = id[k + static_cast<std::uint32_t>(__builtin_ctz(bits))];
+                if (j != i) found(j);
+              }
+            }
+#else
+            std::uint32_t* near = found_.data();  // without branches on the (random) outcome
             std::uint32_t m = 0;
+            const float gx = static_cast<float>(from.x), gy = static_cast<float>(from.y), gz = static_cast<float>(from.z);
             for (std::uint32_t k = 0; k < count; ++k) {
-              const Vec3 d{from.x - slot[k].x, from.y - slot[k].y, from.z - slot[k].z};
-              near[m] = slot[k].id;
-              m += (norm2(d) < uniform_reach * uniform_reach) & (slot[k].id != i);
+              const float ex = gx - x[k], ey = gy - x[cap + k], ez = gz - x[2 * cap + k];
+              near[m] = id[k];
+              m += (ex * ex + ey * ey + ez * ez < reach2) & (id[k] != i);
             }
             for (std::uint32_t q = 0; q < m; ++q) found(near[q]);
+#endif
             continue;
           }
           for (std::uint32_t k = 0; k < count; ++k) {
-            const Vec3 d{from.x - slot[k].x, from.y - slot[k].y, from.z - slot[k].z};
-            const double reach = ri + radius(static_cast<int>(slot[k].id)) + skin;
-            if (norm2(d) < reach * reach && slot[k].id != i) found(slot[k].id);
+            const Vec3 d{from.x - x[k], from.y - x[cap + k], from.z - x[2 * cap + k]};
+            const double reach = ri + radius(static_cast<int>(id[k])) + skin;
+            if (norm2(d) < reach * reach && id[k] != i) found(id[k]);
           }
         }
       }
@@ -561,26 +587,41 @@ class EdmdEngine {
     const std::size_t cell = static_cast<std::size_t>(cell_[i]);
     if (slot_count_[cell] == slot_cap_) grow_slots();
     const std::uint32_t k = slot_count_[cell]++;
-    const Vec3 x = center_[i] - s_.box.lo;
-    slots_[cell * slot_cap_ + k] = Slot{static_cast<float>(x.x), static_cast<float>(x.y), static_cast<float>(x.z), i};
+    const Vec3 c = center_[i] - s_.box.lo;
+    float* x = &slot_x_[cell * slot_cap_ * 3];
+    x[k] = static_cast<float>(c.x);
+    x[slot_cap_ + k] = static_cast<float>(c.y);
+    x[2 * slot_cap_ + k] = static_cast<float>(c.z);
+    slot_id_[cell * slot_cap_ + k] = i;
     slot_of_[i] = k;
   }
 
   void remove_slot(std::uint32_t i) {
     const std::size_t cell = static_cast<std::size_t>(cell_[i]);
-    Slot* slot = &slots_[cell * slot_cap_];
-    const std::uint32_t last = --slot_count_[cell];
-    slot[slot_of_[i]] = slot[last];
-    slot_of_[slot[last].id] = slot_of_[i];
+    float* x = &slot_x_[cell * slot_cap_ * 3];
+    std::uint32_t* id = &slot_id_[cell * slot_cap_];
+    const std::uint32_t last = --slot_count_[cell], k = slot_of_[i];
+    for (std::size_t a = 0; a < 3; ++a) {
+      x[a * slot_cap_ + k] = x[a * slot_cap_ + last];
+      x[a * slot_cap_ + last] = kFarSlot;
+    }
+    id[k] = id[last];
+    slot_of_[id[k]] = k;
   }
 
   void grow_slots() {
-    const std::size_t cells = slot_count_.size(), cap = slot_cap_ + 4;
-    std::vector<Slot> wider(cells * cap);
-    for (std::size_t c = 0; c < cells; ++c)
-      std::copy_n(slots_.begin() + static_cast<std::ptrdiff_t>(c * slot_cap_), slot_count_[c],
-                  wider.begin() + static_cast<std::ptrdiff_t>(c * cap));
-    slots_.swap(wider);
+    const std::size_t cells = slot_count_.size(), cap = slot_cap_ + 8;
+    std::vector<float> wider_x(cells * cap * 3, kFarSlot);
+    std::vector<std::uint32_t> wider_id(cells * cap, 0);
+    for (std::size_t c = 0; c < cells; ++c) {
+      for (std::size_t a = 0; a < 3; ++a)
+        std::copy_n(slot_x_.begin() + static_cast<std::ptrdiff_t>((c * 3 + a) * slot_cap_), slot_count_[c],
+                    wider_x.begin() + static_cast<std::ptrdiff_t>((c * 3 + a) * cap));
+      std::copy_n(slot_id_.begin() + static_cast<std::ptrdiff_t>(c * slot_cap_), slot_count_[c],
+                  wider_id.begin() + static_cast<std::ptrdiff_t>(c * cap));
+    }
+    slot_x_.swap(wider_x);
+    slot_id_.swap(wider_id);
     slot_cap_ = cap;
     found_.resize(cap);
   }
@@ -1087,11 +1128,11 @@ class EdmdEngine {
   AlignedWords list_;                    // list_cap_ words per particle: count, then neighbours
   std::size_t list_cap_ = 0;
   double slot_rounding_ = 0.0;           // m, bound on the error of a distance between centres in slots
-  struct Slot {
-    float x, y, z;  // list centre, from the box's low corner (16 bytes a slot)
-    std::uint32_t id;
-  };
-  std::vector<Slot> slots_;              // slot_cap_ per cell: the centres in each cell, for rebuilds
+  // Per cell, slot_cap_ (a multiple of 8) slots: list centres from the box's low corner in single
+  // precision, rows of x, y and z, and the particles' indices; unused slots lie far away.
+  static constexpr float kFarSlot = 1e18f;
+  std::vector<float> slot_x_;
+  std::vector<std::uint32_t> slot_id_;
   std::vector<std::uint32_t> slot_count_, slot_of_;
   std::size_t slot_cap_ = 0;
   std::vector<std::uint32_t> found_;     // search_neighbors()' scratch, slot_cap_ long
