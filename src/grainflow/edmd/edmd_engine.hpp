@@ -1,8 +1,12 @@
 // The event-driven engine: exact free flight between binary collisions, one scheduled event per
 // particle in an indexed heap, stale events found by per-particle trajectory counters (a particle
-// whose scheduled partner changed course is re-predicted when its event comes up), cell-crossing
-// events on a grid of cells at least a diameter wide, and lazily advanced particles (own clocks),
-// so an event costs O(log N). Dimension 2 (discs in the x-y plane) or 3 is a template parameter.
+// whose scheduled partner changed course is re-predicted when its event comes up), and lazily
+// advanced particles (own clocks), so an event costs O(log N). Partners are found in one of two
+// ways: where every flight is straight (no gravity, Lees–Edwards boundaries or servo), in
+// per-particle neighbour lists rebuilt when a particle has moved a shell from where its list was
+// built (see "Neighbour lists" below); elsewhere in the 27 cells, at least a diameter wide, around
+// the particle, with cell-crossing events. Dimension 2 (discs in the x-y plane) or 3 is a template
+// parameter.
 #pragma once
 
 #include <algorithm>
@@ -12,9 +16,9 @@
 #if defined(__AVX__)
 #include <immintrin.h>
 #endif
+#include <cstdio>
 #include <new>
 #include <numbers>
-#include <cstdio>
 #include <string>
 #include <vector>
 
