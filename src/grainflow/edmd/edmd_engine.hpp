@@ -661,6 +661,24 @@ class EdmdEngine {
     kept_.resize(cap);
   }
 
+  // Where j sits in `list` (it must be there), eight words compared at a time where AVX2 is: the
+  // first match past the length word is j's entry, as words past the end come after it.
+  std::uint32_t find_in_list(const std::uint32_t* list, std::uint32_t j) const {
+#if defined(__AVX2__)
+    const __m256i key = _mm256_set1_epi32(static_cast<int>(j));
+    unsigned skip = 1;  // the length word
+    for (std::uint32_t base = 0;; base += 8, skip = 0) {
+      const __m256i words = _mm256_load_si256(reinterpret_cast<const __m256i*>(list + base));
+      const unsigned hits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(words, key)))) & ~skip;
+      if (hits != 0) return base + static_cast<std::uint32_t>(__builtin_ctz(hits));
+    }
+#else
+    std::uint32_t m = 1;
+    while (list[m] != j) ++m;
+    return m;
+#endif
+  }
+
   // Particle i has reached the edge of its shell (and is current): a new list around where it is.
   [[gnu::noinline]] void rebuild_list(std::uint32_t i) {
     ++counters_.list_rebuilds;
@@ -669,8 +687,7 @@ class EdmdEngine {
     for (std::uint32_t k = 1; k <= mine[0]; ++k) __builtin_prefetch(list_of(mine[k]), 1);
     for (std::uint32_t k = 1; k <= mine[0]; ++k) {
       std::uint32_t* theirs = list_of(mine[k]);
-      std::uint32_t m = 1;
-      while (theirs[m] != i) ++m;
+      const std::uint32_t m = find_in_list(theirs, i);
       theirs[m] = theirs[theirs[0]--];
     }
     mine[0] = 0;
