@@ -94,11 +94,69 @@ double max_relative_overlap(const EdmdState& s) {
 constexpr double kOverlapTolerance = 1e-9;
 
 // ---------------------------------------------------------------------------------------------
+// Neighbour lists (the path taken without gravity, Lees–Edwards or servo) against the cell search:
+// the same collisions in the same order, so the same states until round-off (the two paths wrap
+// positions at different times) is amplified by the chaos of the gas, after a few collisions per
+// particle; and, with walls, no overlaps and energy kept over a longer run.
+
+template <int Dim>
+void check_lists_follow_cells(const test::ElasticGas& g, double t_end) {
+  const CaseConfig c = load_case_from_string(test::elastic_gas_case(g), "edmd_test.toml");
+  EdmdEngine<Dim> lists(build_edmd_state(c)), cells(build_edmd_state(c), false);
+  ASSERT_TRUE(lists.neighbor_lists());
+  ASSERT_FALSE(cells.neighbor_lists());
+  lists.advance_to(t_end);
+  cells.advance_to(t_end);
+  const ParticleStore& a = lists.state().particles;
+  const ParticleStore& b = cells.state().particles;
+  // Each engine stores its particles in the order of its own cells: match them by id.
+  std::vector<std::size_t> where(b.size());
+  for (std::size_t k = 0; k < b.size(); ++k) where[static_cast<std::size_t>(b.id[k])] = k;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::size_t k = where[static_cast<std::size_t>(a.id[i])];
+    worst = std::max(worst, norm(lists.state().box.minimum_image(a.position[i], b.position[k])));
+    worst = std::max(worst, norm(a.velocity[i] - b.velocity[k]));
+  }
+  std::printf("  %dD, %zu particles, walls %d: %lld collisions (%lld wall) by t = %g; largest difference %.2e\n", Dim,
+              a.size(), g.walls, lists.counters().collisions, lists.counters().wall_collisions, t_end, worst);
+  EXPECT_GT(lists.counters().collisions, static_cast<long long>(a.size()));
+  EXPECT_EQ(lists.counters().collisions, cells.counters().collisions);
+  EXPECT_EQ(lists.counters().wall_collisions, cells.counters().wall_collisions);
+  EXPECT_LT(worst, 1e-8);
+}
+
+TEST(EdmdNeighbourLists, FollowTheCellSearch3D) { check_lists_follow_cells<3>({3, 10, 0.3, 1.0, -1.0, false, 3}, 0.3); }
+TEST(EdmdNeighbourLists, FollowTheCellSearch3DDenseRough) { check_lists_follow_cells<3>({3, 10, 0.45, 1.0, 1.0, false, 4}, 0.15); }
+TEST(EdmdNeighbourLists, FollowTheCellSearch3DWalls) { check_lists_follow_cells<3>({3, 10, 0.3, 1.0, -1.0, true, 5}, 0.3); }
+TEST(EdmdNeighbourLists, FollowTheCellSearch2D) { check_lists_follow_cells<2>({2, 30, 0.5, 1.0, -1.0, false, 6}, 0.6); }
+TEST(EdmdNeighbourLists, FollowTheCellSearch2DWalls) { check_lists_follow_cells<2>({2, 30, 0.3, 1.0, 1.0, true, 7}, 1.5); }
+
+TEST(EdmdNeighbourLists, WalledGasKeepsEnergyAndNeverOverlaps) {
+  EdmdEngine<3> e = engine_from<3>(test::elastic_gas_case({3, 10, 0.4, 1.0, -1.0, true, 8}));
+  ASSERT_TRUE(e.neighbor_lists());
+  const double e0 = kinetic_energy(e.state());
+  double worst_energy = 0.0, worst_overlap = -1.0;
+  for (int k = 1; k <= 40; ++k) {
+    e.advance_to(k * kRunScale);
+    worst_energy = std::max(worst_energy, std::fabs(kinetic_energy(e.state()) / e0 - 1.0));
+    worst_overlap = std::max(worst_overlap, max_relative_overlap(e.state()));
+  }
+  std::printf("  walled gas: %lld collisions, %lld wall, %lld list rebuilds; max |dE/E| %.2e, max overlap %.2e\n",
+              e.counters().collisions, e.counters().wall_collisions, e.counters().list_rebuilds, worst_energy, worst_overlap);
+  EXPECT_GT(e.counters().wall_collisions, 0);
+  EXPECT_GT(e.counters().list_rebuilds, 0);
+  EXPECT_LT(worst_energy, 1e-9);
+  EXPECT_LT(worst_overlap, kOverlapTolerance);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Elastic gas: energy to 1e-9 relative over 10^6 collisions, momentum to round-off, no overlaps.
 
 template <int Dim>
 void check_elastic_gas(const std::string& text, long long target_collisions, double chunk) {
   EdmdEngine<Dim> e = engine_from<Dim>(text);
+  EXPECT_TRUE(e.neighbor_lists());  // straight flights in a periodic box
   const double e0 = kinetic_energy(e.state());
   const Vec3 p0 = momentum(e.state());
   const double pscale = momentum_scale(e.state());

@@ -205,6 +205,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
         summary.integer("wall_collisions", k.wall_collisions);
         summary.integer("cell_crossings", k.cell_crossings);
         summary.integer("stale_events", k.stale);
+        summary.integer("neighbor_list_rebuilds", k.list_rebuilds);
         summary.integer("rolling_starts", k.rolling_starts);
         summary.number("events_per_second", wall_seconds > 0.0 ? k.events / wall_seconds : 0.0);
         summary.number("collisions_per_second", wall_seconds > 0.0 ? k.collisions / wall_seconds : 0.0);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace grainflow::edmd {
@@ -16,7 +17,11 @@ class EventQueue {
     times_ = times;
     size_ = particles;
     // Node k lives at slot k + 3, so children 4k+1 .. 4k+4 fill slots 4k+4 .. 4k+7: one line.
-    lines_.assign((particles + kOffset + kArity - 1) / kArity + 1, Line{});
+    // Slots past the last node hold +inf (never the least), so a sift compares four children
+    // without asking how many there are: the last node's children may lie up to a line beyond it.
+    lines_.assign((particles + kOffset + kArity - 1) / kArity + 2, Line{});
+    for (Line& line : lines_)
+      for (Node& node : line.node) node = {kInfinity, 0};
     heap_ = lines_.data()->node + kOffset;
     position_.resize(particles);
     for (std::size_t i = 0; i < particles; ++i) {
@@ -26,6 +31,7 @@ class EventQueue {
     for (std::size_t k = particles / kArity + 1; k-- > 0;) sift_down(k);
   }
   std::uint32_t top() const { return heap_[0].particle; }
+  double top_time() const { return heap_[0].time; }  // the event time of top()
   bool empty() const { return size_ == 0; }
   // Call after the event time of particle `i` changed.
   void update(std::uint32_t i) {
@@ -37,6 +43,7 @@ class EventQueue {
 
  private:
   static constexpr std::size_t kArity = 4;
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
   static constexpr std::size_t kOffset = kArity - 1;
   struct Node {
     double time;
@@ -67,10 +74,11 @@ class EventQueue {
     while (true) {
       const std::size_t first = kArity * k + 1;
       if (first >= size_) break;
-      const std::size_t last = first + kArity < size_ ? first + kArity : size_;
-      std::size_t child = first;
-      for (std::size_t c = first + 1; c < last; ++c)
-        if (heap_[c].time < heap_[child].time) child = c;
+      // The least of the four children, without branches on their order (ties: the first).
+      const Node* c = heap_ + first;
+      const std::size_t low = c[1].time < c[0].time ? 1 : 0;
+      const std::size_t high = c[3].time < c[2].time ? 3 : 2;
+      const std::size_t child = first + (c[high].time < c[low].time ? high : low);
       if (heap_[child].time >= item.time) break;
       place(k, heap_[child]);
       k = child;
