@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "grainflow/core/error.hpp"
@@ -19,6 +20,13 @@ constexpr double kMinStepsPerContact = 5.0;
 // Random placement with radius expansion cannot reach dense packings; 0.5 leaves room to expand.
 constexpr double kMaxRandomSolidsFraction = 0.5;
 // Simple cubic lattice sites need the spacing of lattice_spacing diameters.
+
+// A count or size for a message: an integer as digits, else in %g form.
+std::string fmt_number(double x) {
+  char text[64];
+  std::snprintf(text, sizeof text, x < 1e15 && x == std::floor(x) ? "%.0f" : "%g", x);
+  return text;
+}
 
 void fail(const CaseConfig& c, const std::string& key, const std::string& reason) {
   throw InputError(c.path, key, reason);
@@ -84,12 +92,12 @@ void validate_dem(const CaseConfig& c) {
                                    std::to_string(kMaxRandomSolidsFraction) + " (enlarge the domain or region)");
     if (c.particles.init == "lattice") {
       const double spacing = c.particles.lattice_spacing * d.max_diameter;
-      long sites = 1;
-      for (int axis = 0; axis < 3; ++axis) sites *= static_cast<long>(std::floor((hi[axis] - lo[axis]) / spacing));
+      double sites = 1;  // counted in double: a huge region must not overflow an integer
+      for (int axis = 0; axis < 3; ++axis) sites *= std::floor((hi[axis] - lo[axis]) / spacing);
       long total = 0;
       for (const auto& s : c.species) total += s.count;
-      if (total > sites)
-        fail(c, "species.count", std::to_string(total) + " particles do not fit on the " + std::to_string(sites) +
+      if (static_cast<double>(total) > sites)
+        fail(c, "species.count", std::to_string(total) + " particles do not fit on the " + fmt_number(sites) +
                                      " lattice sites of the placement region");
     }
   } else {
@@ -229,10 +237,10 @@ void validate_edmd(const CaseConfig& c) {
     if (c.particles.init == "lattice") {
       const bool fcc = c.particles.lattice == "fcc";
       const double spacing = c.particles.lattice_spacing * max_diameter * (fcc ? std::sqrt(2.0) : 1.0);
-      long sites = fcc ? 4 : 1;
-      for (int axis = 0; axis < dim; ++axis) sites *= static_cast<long>(std::floor((hi[axis] - lo[axis]) / spacing));
-      if (total > sites)
-        fail(c, "species.count", std::to_string(total) + " particles do not fit on the " + std::to_string(sites) +
+      double sites = fcc ? 4 : 1;  // counted in double: a huge region must not overflow an integer
+      for (int axis = 0; axis < dim; ++axis) sites *= std::floor((hi[axis] - lo[axis]) / spacing);
+      if (static_cast<double>(total) > sites)
+        fail(c, "species.count", std::to_string(total) + " particles do not fit on the " + fmt_number(sites) +
                                      " lattice sites of the placement region");
     }
   } else {
@@ -266,7 +274,24 @@ void validate_edmd(const CaseConfig& c) {
 
 }  // namespace
 
+// Positions carry about 16 digits: beyond 1e9 diameters across, a contact's overlap (1e-3 d and
+// less) would be lost in their rounding.
+constexpr double kMaxDomainDiameters = 1e9;
+
+void validate_extent(const CaseConfig& c) {
+  double max_diameter = 0.0;
+  for (const auto& s : c.species) max_diameter = std::max(max_diameter, s.diameter);
+  if (!(max_diameter > 0.0)) return;  // the engines' checks name the species
+  for (int axis = 0; axis < 3; ++axis) {
+    const double diameters = c.domain.length(axis) / max_diameter;
+    if (diameters > kMaxDomainDiameters)
+      fail(c, "domain.hi", std::string("the domain is ") + fmt_number(diameters) + " diameters long along " + "xyz"[axis] +
+                               "; at most 1e9 (positions would lose the precision contacts need)");
+  }
+}
+
 void validate_case(const CaseConfig& c) {
+  validate_extent(c);
   if (c.engine.kind == "edmd") {
     validate_edmd(c);
     return;
