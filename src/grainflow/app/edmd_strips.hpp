@@ -17,16 +17,20 @@ namespace grainflow::app {
 class EdmdStrips {
  public:
   static constexpr int kAxis = 1;  // y: the velocity gradient (flow along x)
+  static constexpr int kMaxStrips = 1000;  // block-averaged sums keep up to 512 copies of every strip
 
   EdmdStrips(const CaseConfig& c, const edmd::EdmdState& s) : dimension_(s.dimension) {
     for (std::size_t w = 0; w < s.walls.size(); ++w) {
       if (s.walls[w].face == 2) bottom_ = static_cast<int>(w);
       if (s.walls[w].face == 3) top_ = static_cast<int>(w);
     }
-    const double thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : c.species.front().diameter;
+    double thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : c.species.front().diameter;
     const auto [lo, hi] = bounds(s, s.time);
     const double extent = top_ >= 0 ? hi - lo : c.domain.hi[kAxis] - lo;
-    count_ = std::max(1, static_cast<int>(std::lround(extent / thickness)));
+    // At most kMaxStrips: a domain millions of diameters tall gets thicker strips rather than
+    // gigabytes of per-strip sums.
+    count_ = static_cast<int>(std::clamp(std::round(extent / thickness), 1.0, static_cast<double>(kMaxStrips)));
+    if (count_ == kMaxStrips) thickness = extent / count_;
     // Periodic along y (Lees-Edwards): the strips span the box exactly, so each end meets the other.
     if (top_ < 0) top_height_ = s.box.periodic[kAxis] ? s.box.hi[kAxis] : lo + count_ * thickness;
   }

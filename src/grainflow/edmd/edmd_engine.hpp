@@ -216,11 +216,19 @@ class EdmdEngine {
   void build_grid() {
     const std::size_t n = s_.particles.size();
     const double margin = s_.servo.enabled && s_.servo.scale_width ? 1.1 : 1.0;
-    const double width = lists_ ? list_cell_width() : margin * max_diameter_;
-    for (int a = 0; a < 3; ++a) {
-      cells_[a] = a < Dim ? std::max(1, static_cast<int>(std::floor(s_.box.length(a) / width))) : 1;
-      cells_[a] = std::min(cells_[a], 1 << 11);
-      cell_size_[a] = s_.box.length(a) / cells_[a];
+    // A sparse box (a few particles in a huge domain) gets wider cells: the grid's memory follows the
+    // particles, not the volume (wider cells only add candidates). At most max(32768, 4 N) cells; on
+    // the list path at most max(64, 4 N), as every cell there holds as many slots as the fullest.
+    const double max_cells = std::max(lists_ ? 64.0 : 32768.0, 4.0 * static_cast<double>(n));
+    for (double width = lists_ ? list_cell_width() : margin * max_diameter_;; width *= 1.25) {
+      double total = 1.0;
+      for (int a = 0; a < 3; ++a) {
+        cells_[a] = a < Dim ? std::max(1, static_cast<int>(std::floor(s_.box.length(a) / width))) : 1;
+        cells_[a] = std::min(cells_[a], 1 << 11);
+        cell_size_[a] = s_.box.length(a) / cells_[a];
+        total *= cells_[a];
+      }
+      if (total <= max_cells) break;
     }
     head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2], -1);
     prev_.assign(n, -1);
