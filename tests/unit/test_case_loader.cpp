@@ -384,16 +384,14 @@ TEST(CaseLoader, MissingFileIsAnInputError) {
   }
 }
 
-// Found by fuzzing (make fuzz): a lattice placement over a huge region counted its sites in a long,
-// and 1e8 x 1e8 x 1e8 sites overflowed it (undefined behaviour, caught by UBSan in the debug
-// build). Sites are now counted in double: such a region validates, for both engines.
-TEST(CaseLoader, HugeLatticeRegionCountsItsSitesWithoutOverflow) {
-  const std::string edmd = R"([engine]
+// An event-driven fcc lattice of 10 unit spheres in a periodic box with the given upper corner.
+std::string sphere_lattice_case(const std::string& hi) {
+  return R"([engine]
 kind = "edmd"
 dimension = 3
 [domain]
 lo = [0.0, 0.0, 0.0]
-hi = [1.0e8, 1.0e8, 1.0e8]
+hi = )" + hi + R"(
 boundary = { x = "periodic", y = "periodic", z = "periodic" }
 [[species]]
 name = "sphere"
@@ -410,7 +408,13 @@ duration = 1.0
 [output]
 interval = 0.5
 )";
-  EXPECT_NO_THROW(load_case_from_string(edmd, kLabel));
+}
+
+// Found by fuzzing (make fuzz): a lattice placement over a huge region counted its sites in a long,
+// and 1e8 x 1e8 x 1e8 sites overflowed it (undefined behaviour, caught by UBSan in the debug
+// build). Sites are now counted in double: such a region validates, for both engines.
+TEST(CaseLoader, HugeLatticeRegionCountsItsSitesWithoutOverflow) {
+  EXPECT_NO_THROW(load_case_from_string(sphere_lattice_case("[1.0e8, 1.0e8, 1.0e8]"), kLabel));
   // The soft-sphere engine's check: 3 mm spheres on a lattice in a 300 km cube (1e8 diameters).
   const std::string dem = replace(replace(kMinimal, "init = \"random\"", "init = \"lattice\""), "hi = [0.02, 0.05, 0.02]",
                                   "hi = [3.0e5, 3.0e5, 3.0e5]");
@@ -419,27 +423,5 @@ interval = 0.5
 
 // Beyond 1e9 diameters along an axis positions cannot resolve a contact: refused, naming domain.hi.
 TEST(CaseLoader, DomainBeyondPositionPrecisionIsRefused) {
-  const std::string text = R"([engine]
-kind = "edmd"
-dimension = 3
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [33.0, 33.0, 3.3e97]
-boundary = { x = "periodic", y = "periodic", z = "periodic" }
-[[species]]
-name = "sphere"
-diameter = 1.0
-density = 1.9
-count = 10
-[particles]
-init = "lattice"
-lattice = "fcc"
-[collision]
-restitution = 1.0
-[run]
-duration = 1.0
-[output]
-interval = 0.5
-)";
-  expect_input_error(text, "domain.hi", "at most 1e9");
+  expect_input_error(sphere_lattice_case("[33.0, 33.0, 3.3e97]"), "domain.hi", "at most 1e9");
 }
