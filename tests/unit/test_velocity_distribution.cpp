@@ -236,15 +236,17 @@ TEST(VelocityDistributions, ElasticDiscGasFromTheEngineIsMaxwellian) {
     std::printf("  gas %s: a = %.4f +- %.4f (fit), sampling s.d. %.4f\n", v.name.c_str(), v.fit.a, v.fit.error, sd);
     EXPECT_NEAR(v.fit.a, expected[i], 4.0 * sd) << v.name;
   }
-  // Equipartition (what makes X5 Maxwellian): beta <omega'^2> = <u'^2> = <v'^2>, to 4 s.d. of a
-  // variance estimate from n / 2 values, sqrt(2 / (n / 2)).
+  // Equipartition (what makes X5 Maxwellian): beta <omega'^2> = <u'^2> = <v'^2>, to 4 s.d. of the
+  // ratio of two variance estimates from n / 2 values each: each has relative s.d. sqrt(2 / (n / 2)),
+  // so their ratio sqrt(2) times that, sqrt(8 / n). (This bound once took one estimate's s.d. only,
+  // and a debug build's different but equally valid trajectory landed at 4.4 of those.)
   double spin = 0.0, u2 = 0.0, v2 = 0.0;
   for (const auto& m : d.strips) {
     spin += m.energy[kSpinZ] * m.count / static_cast<double>(d.counted);
     u2 += m.variance[kU] * m.count / static_cast<double>(d.counted);
     v2 += m.variance[kV] * m.count / static_cast<double>(d.counted);
   }
-  const double tolerance = 4.0 * std::sqrt(4.0 / static_cast<double>(d.counted));
+  const double tolerance = 4.0 * std::sqrt(8.0 / static_cast<double>(d.counted));
   EXPECT_NEAR(spin / u2, 1.0, tolerance);
   EXPECT_NEAR(v2 / u2, 1.0, tolerance);
   EXPECT_NEAR(d.shear_rate, 0.0, 0.01);  // no shear: S ~ 0
