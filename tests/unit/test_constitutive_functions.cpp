@@ -11,7 +11,7 @@
 using namespace grainflow::analysis;
 
 TEST(ConstitutiveFunctions, ChiAndBagnoldFunctionsFromTheirDefinitions) {
-  StripMoments m;
+  ConstitutiveInputs m;
   m.solids_fraction = 0.5;
   m.velocity_variance = 2.0, m.velocity_variance_error = 0.2;  // 10 %
   m.normal_stress = 3.0, m.normal_stress_error = 0.3;          // 10 %
@@ -30,7 +30,7 @@ TEST(ConstitutiveFunctions, ChiAndBagnoldFunctionsFromTheirDefinitions) {
 
 TEST(ConstitutiveFunctions, ShearFunctionIsPositiveWhenTheStressResistsTheShear) {
   // A flow sheared the other way (du/dy < 0) resists with tau_s = -P_yx < 0: f_s stays positive.
-  StripMoments m;
+  ConstitutiveInputs m;
   m.velocity_variance = 1.0, m.normal_stress = 1.0;
   m.shear_stress = -0.4, m.du_dy = -2.0;
   const auto v = constitutive_functions(m, 1.0, 1.0);
@@ -39,7 +39,7 @@ TEST(ConstitutiveFunctions, ShearFunctionIsPositiveWhenTheStressResistsTheShear)
 }
 
 TEST(ConstitutiveFunctions, UndefinedWithoutShearOrFluctuations) {
-  StripMoments m;  // a plug at rest: no variance, no gradient
+  ConstitutiveInputs m;  // a plug at rest: no variance, no gradient
   m.normal_stress = 1.0;
   const auto v = constitutive_functions(m, 1.0, 1.0);
   EXPECT_TRUE(std::isnan(v.chi));
@@ -49,7 +49,7 @@ TEST(ConstitutiveFunctions, UndefinedWithoutShearOrFluctuations) {
 
 TEST(ConstitutiveFunctions, ZeroStressHasAFiniteError) {
   // A strip whose shear stress averages to zero still has the stress's own error in f_s.
-  StripMoments m;
+  ConstitutiveInputs m;
   m.velocity_variance = 1.0, m.normal_stress = 1.0;
   m.shear_stress = 0.0, m.shear_stress_error = 0.1, m.du_dy = 1.0, m.du_dy_error = 0.1;
   const auto v = constitutive_functions(m, 1.0, 1.0);

@@ -17,7 +17,7 @@ double ratio_error(double value, double a_error, double per_a, double b, double 
 
 }  // namespace
 
-ConstitutiveValues constitutive_functions(const StripMoments& m, double material_density, double radius) {
+ConstitutiveValues constitutive_functions(const ConstitutiveInputs& m, double material_density, double radius) {
   ConstitutiveValues v;
   const double energy = material_density * m.velocity_variance;
   v.chi = energy > 0.0 ? m.normal_stress / energy : kNaN;

@@ -14,7 +14,7 @@
 namespace grainflow::analysis {
 
 // One strip's averages, each with its standard error.
-struct StripMoments {
+struct ConstitutiveInputs {
   double solids_fraction = 0.0, solids_fraction_error = 0.0;
   double velocity_variance = 0.0, velocity_variance_error = 0.0;  // m^2/s^2, sum_i <u_i'^2>
   double normal_stress = 0.0, normal_stress_error = 0.0;  // tau_N = P_yy, compressive positive (Pa; 2D N/m)
@@ -31,7 +31,7 @@ struct ConstitutiveValues {
 // chi, f_s and f_N with errors propagated to first order from independent relative errors (the
 // inputs' errors come from separate block averages; their correlation is ignored). NaN where a
 // denominator vanishes.
-ConstitutiveValues constitutive_functions(const StripMoments& m, double material_density, double radius);
+ConstitutiveValues constitutive_functions(const ConstitutiveInputs& m, double material_density, double radius);
 
 // Campbell's equivalent 3D solids fraction of a 2D one (section 3.1): pi/4 maps to pi/6.
 double equivalent_3d_solids_fraction(double nu);

@@ -40,7 +40,7 @@ void write_constitutive(const std::string& path, const CaseConfig& c, int dimens
     for (std::size_t k = 0; k < n; ++k) {
       const auto& x = strips[k].averages;
       const auto& p = stresses[k];
-      analysis::StripMoments m;
+      analysis::ConstitutiveInputs m;
       m.solids_fraction = x.value[solids_fraction];
       m.solids_fraction_error = x.error[solids_fraction];
       m.velocity_variance = x.value[u_variance] + x.value[v_variance] + (dimension == 3 ? x.value[w_variance] : 0.0);
@@ -52,11 +52,11 @@ void write_constitutive(const std::string& path, const CaseConfig& c, int dimens
       m.du_dy = strips[k].du_dy;
       m.du_dy_error = strips[k].du_dy_error;
       const auto v = analysis::constitutive_functions(m, density, radius);
-      analysis::StripMoments w = m;  // Campbell's: the stresses from the weight above
+      analysis::ConstitutiveInputs w = m;  // Campbell's: the stresses from the weight above
       w.normal_stress = p.weight_row.y, w.normal_stress_error = 0.0;
       w.shear_stress = -p.weight_row.x, w.shear_stress_error = 0.0;
       const auto vw = analysis::constitutive_functions(w, density, radius);
-      analysis::StripMoments local = m;  // the fluctuations about the instantaneous strip mean (Lan's)
+      analysis::ConstitutiveInputs local = m;  // the fluctuations about the instantaneous strip mean (Lan's)
       local.velocity_variance = dimension * x.value[temperature_lan];
       local.velocity_variance_error = dimension * x.error[temperature_lan];
       const auto vl = analysis::constitutive_functions(local, density, radius);
