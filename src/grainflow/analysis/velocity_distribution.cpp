@@ -147,37 +147,37 @@ VelocityDistributions velocity_distributions(const StateSamples& s, const Veloci
   const std::vector<int> strip = strip_of_each(s);
   auto weight = [&](std::size_t i, int c) { return c >= kSpinX ? s.inertia_factor * s.radius[i] * s.radius[i] : 1.0; };
 
+  // visit(i, moments of i's strip, i's components) for every particle sample lying in a strip.
+  auto for_each_in_strips = [&](auto&& visit) {
+    for (std::size_t t = 0; t < s.samples; ++t)
+      for (std::size_t i = 0; i < s.particles; ++i) {
+        const int k = strip[t * s.particles + i];
+        if (k < 0) continue;
+        double q[kComponents];
+        components_of(s, t, i, q);
+        visit(i, out.strips[k], q);
+      }
+  };
   // Pass 1 ("during the averaging period"): strip means and centres.
   for (std::size_t t = 0; t < s.samples; ++t) {
     const double thickness = (s.strip_hi[t] - s.strip_lo[t]) / strips;
     for (int k = 0; k < strips; ++k) out.strips[k].centre += (s.strip_lo[t] + (k + 0.5) * thickness) / s.samples;
-    for (std::size_t i = 0; i < s.particles; ++i) {
-      const int k = strip[t * s.particles + i];
-      if (k < 0) continue;
-      double q[kComponents];
-      components_of(s, t, i, q);
-      auto& m = out.strips[k];
-      ++m.count;
-      for (int c = 0; c < kComponents; ++c) m.mean[c] += q[c];
-    }
   }
+  for_each_in_strips([&](std::size_t, StripMoments& m, const double* q) {
+    ++m.count;
+    for (int c = 0; c < kComponents; ++c) m.mean[c] += q[c];
+  });
   for (auto& m : out.strips)
     if (m.count > 0)
       for (double& mean : m.mean) mean /= static_cast<double>(m.count);
   // Pass 2: the mean-square fluctuations about those means.
-  for (std::size_t t = 0; t < s.samples; ++t)
-    for (std::size_t i = 0; i < s.particles; ++i) {
-      const int k = strip[t * s.particles + i];
-      if (k < 0) continue;
-      double q[kComponents];
-      components_of(s, t, i, q);
-      auto& m = out.strips[k];
-      for (int c = 0; c < kComponents; ++c) {
-        const double d2 = (q[c] - m.mean[c]) * (q[c] - m.mean[c]);
-        m.variance[c] += d2;
-        m.energy[c] += weight(i, c) * d2;
-      }
+  for_each_in_strips([&](std::size_t i, StripMoments& m, const double* q) {
+    for (int c = 0; c < kComponents; ++c) {
+      const double d2 = (q[c] - m.mean[c]) * (q[c] - m.mean[c]);
+      m.variance[c] += d2;
+      m.energy[c] += weight(i, c) * d2;
     }
+  });
   for (auto& m : out.strips)
     if (m.count > 0)
       for (int c = 0; c < kComponents; ++c) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grainflow/core/cell_counts.hpp"
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -11,19 +13,9 @@ namespace grainflow::dem {
 
 void CellGrid::setup(const PeriodicBox& box, double cell_size, std::size_t particles) {
   box_ = box;
-  // A sparse box (a few particles in a huge domain) gets wider cells: at most a few per particle,
-  // so the grid's memory follows the particles, not the volume (wider cells only add candidates).
-  const double max_cells = std::max(32768.0, 4.0 * static_cast<double>(particles));
-  for (double size = cell_size;; size *= 1.25) {
-    double total = 1.0;
-    for (int axis = 0; axis < 3; ++axis) {
-      cells_[axis] = std::max(1, static_cast<int>(std::floor(box.length(axis) / size)));
-      cells_[axis] = std::min(cells_[axis], 1 << 12);
-      inv_size_[axis] = cells_[axis] / box.length(axis);
-      total *= cells_[axis];
-    }
-    if (total <= max_cells) break;
-  }
+  const std::array<double, 3> lengths{box.length(0), box.length(1), box.length(2)};
+  cells_ = cell_counts(lengths, 3, cell_size, 1 << 12, std::max(32768.0, 4.0 * static_cast<double>(particles)));
+  for (int axis = 0; axis < 3; ++axis) inv_size_[axis] = cells_[axis] / box.length(axis);
 }
 
 int CellGrid::cell_of(const Vec3& x) const {

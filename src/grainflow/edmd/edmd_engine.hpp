@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "grainflow/core/cell_counts.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/edmd/collision_observer.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
@@ -216,20 +217,12 @@ class EdmdEngine {
   void build_grid() {
     const std::size_t n = s_.particles.size();
     const double margin = s_.servo.enabled && s_.servo.scale_width ? 1.1 : 1.0;
-    // A sparse box (a few particles in a huge domain) gets wider cells: the grid's memory follows the
-    // particles, not the volume (wider cells only add candidates). At most max(32768, 4 N) cells; on
-    // the list path at most max(64, 4 N), as every cell there holds as many slots as the fullest.
+    // At most max(32768, 4 N) cells (core/cell_counts.hpp); on the list path max(64, 4 N), as every
+    // cell there holds as many slots as the fullest.
     const double max_cells = std::max(lists_ ? 64.0 : 32768.0, 4.0 * static_cast<double>(n));
-    for (double width = lists_ ? list_cell_width() : margin * max_diameter_;; width *= 1.25) {
-      double total = 1.0;
-      for (int a = 0; a < 3; ++a) {
-        cells_[a] = a < Dim ? std::max(1, static_cast<int>(std::floor(s_.box.length(a) / width))) : 1;
-        cells_[a] = std::min(cells_[a], 1 << 11);
-        cell_size_[a] = s_.box.length(a) / cells_[a];
-        total *= cells_[a];
-      }
-      if (total <= max_cells) break;
-    }
+    const std::array<double, 3> lengths{s_.box.length(0), s_.box.length(1), s_.box.length(2)};
+    cells_ = cell_counts(lengths, Dim, lists_ ? list_cell_width() : margin * max_diameter_, 1 << 11, max_cells);
+    for (int a = 0; a < 3; ++a) cell_size_[a] = s_.box.length(a) / cells_[a];
     head_.assign(static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2], -1);
     prev_.assign(n, -1);
     cell_.assign(n, 0);

@@ -25,36 +25,29 @@ inline bool approaching(const Vec3& dr, const Vec3& dv, double speed_floor = 0.0
   return dot(dr, dv) < -distance * std::max(kGrazing * std::sqrt(norm2(dv)), speed_floor);
 }
 
-// Time until |dr + dv t| = sigma for approaching spheres; 0 if they already overlap while
-// approaching (round-off), kNever if they miss or separate. Relative motion is linear: gravity
-// accelerates both alike. Uses t = c / (-b + sqrt(b^2 - a c)), which has no cancellation.
-inline double contact_time(const Vec3& dr, const Vec3& dv, double sigma, double speed_floor = 0.0) {
+// Time until |dr + dv t| = sigma for approaching spheres, if that is before `horizon` (the best
+// event found so far; kNever: any time); 0 if they already overlap while approaching (round-off),
+// kNever if they miss, separate, or meet only at or after the horizon. Relative motion is linear:
+// gravity accelerates both alike. Uses t = c / (-b + sqrt(b^2 - a c)), which has no cancellation.
+// Past the horizon is decided without the square root where t >= c / (-2b) (the root's denominator
+// is at most -2b) is already beyond it, with a 1e-9 margin so no earlier root is dropped by
+// rounding. The speed floor, which costs a square root, is evaluated only for a touching pair.
+template <class SpeedFloor>
+inline double contact_time_before(const Vec3& dr, const Vec3& dv, double sigma, double horizon, SpeedFloor&& speed_floor) {
   const double b = dot(dr, dv);
   if (b >= 0.0) return kNever;  // moving apart (or tangent)
   const double c = norm2(dr) - sigma * sigma;
-  if (c <= 0.0) return approaching(dr, dv, speed_floor) ? 0.0 : kNever;  // touching: collide now unless grazing
+  if (c <= 0.0) return approaching(dr, dv, speed_floor()) ? 0.0 : kNever;  // touching: collide now unless grazing
+  if (c > -2.0 * b * horizon * (1.0 + 1e-9)) return kNever;
   const double a = norm2(dv);
   const double discriminant = b * b - a * c;
   if (discriminant <= 0.0) return kNever;
   return c / (-b + std::sqrt(discriminant));
 }
 
-// contact_time() for a search that keeps only the earliest event: kNever for any time not below
-// `horizon` (the best found so far), decided without the square root where t >= c / (-2b) (the
-// root's denominator is at most -2b) is already past it, with a 1e-9 margin so no earlier root is
-// dropped by rounding; and the speed floor, which costs a square root, evaluated only for a
-// touching pair. Same result as contact_time() wherever that is below the horizon.
-template <class SpeedFloor>
-inline double contact_time_before(const Vec3& dr, const Vec3& dv, double sigma, double horizon, SpeedFloor&& speed_floor) {
-  const double b = dot(dr, dv);
-  if (b >= 0.0) return kNever;
-  const double c = norm2(dr) - sigma * sigma;
-  if (c <= 0.0) return approaching(dr, dv, speed_floor()) ? 0.0 : kNever;
-  if (c > -2.0 * b * horizon * (1.0 + 1e-9)) return kNever;
-  const double a = norm2(dv);
-  const double discriminant = b * b - a * c;
-  if (discriminant <= 0.0) return kNever;
-  return c / (-b + std::sqrt(discriminant));
+// The contact time with no horizon and a fixed speed floor.
+inline double contact_time(const Vec3& dr, const Vec3& dv, double sigma, double speed_floor = 0.0) {
+  return contact_time_before(dr, dv, sigma, kNever, [speed_floor] { return speed_floor; });
 }
 
 // First time t >= 0 at which gap(t) = gap + rate t + 0.5 accel t^2 reaches zero while closing
