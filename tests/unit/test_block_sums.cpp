@@ -28,6 +28,21 @@ TEST(BlockSums, MergesNeighboursIntoEqualContiguousBlocksWithExactSumsAndWeights
   }
 }
 
+TEST(BlockSums, ManyBinsKeepFewerBlocksSoMemoryStaysBounded) {
+  // 2^19 / 40000 bins = 13 blocks would fit; never fewer than 64 are kept, so merging starts at 64
+  // (to 32 of length 2) instead of 512. Sums stay exact: 40000 bins x 64 blocks at most.
+  BlockSums<double> sums;
+  const std::size_t bins = 40000;
+  for (long s = 0; s < 100; ++s) sums.add(std::vector<double>(bins, double(s)));
+  EXPECT_EQ(sums.block_length(), 2);  // 64 blocks of 1 -> 32 of 2 at sample 64; 50 of 2 after 100
+  ASSERT_EQ(sums.blocks().size(), 50u);
+  EXPECT_EQ(sums.blocks()[49][bins - 1], 98.0 + 99.0);
+  // A few bins keep the full 512 (the test above): the limit only bites where it must.
+  BlockSums<double> few;
+  for (long s = 0; s < 511; ++s) few.add({1.0});
+  EXPECT_EQ(few.block_length(), 1);
+}
+
 TEST(BlockSums, ErrorIsUnknownBelowTwiceTheFewestBlocks) {
   // Fewer than 2 kMinErrorBlocks blocks: too few blocking levels to see a plateau (the estimate
   // itself is tested in test_analysis_block_average).

@@ -7,6 +7,7 @@
 // keeps the total weight of its samples.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <limits>
 #include <vector>
@@ -15,8 +16,13 @@
 
 namespace grainflow::observe {
 
-// At most this many blocks are kept (neighbours merge when full).
+// At most this many blocks are kept (neighbours merge when full) ...
 inline constexpr std::size_t kMaxErrorBlocks = 512;
+// ... and fewer when there are many bins, so that blocks x bins stays under this many sums: a
+// domain of 10^5 zones would otherwise keep 5 x 10^7 of them (gigabytes). Never fewer than 64
+// blocks, enough for the blocking analysis (at least 2 kMinErrorBlocks).
+inline constexpr std::size_t kMaxBlockedSums = std::size_t{1} << 19;
+inline constexpr std::size_t kFewestErrorBlocks = 64;
 // Blocking levels need at least this many blocks; below twice as many blocks the error is unknown.
 inline constexpr std::size_t kMinErrorBlocks = 8;
 
@@ -27,7 +33,12 @@ class BlockSums {
 
   // One sample's sums, one per bin (the bin count is fixed by the first sample), and its weight.
   void add(const std::vector<Sums>& sample, double weight = 1.0) {
-    if (open_.empty()) open_.assign(sample.size(), Sums{});
+    if (open_.empty()) {
+      open_.assign(sample.size(), Sums{});
+      // An even count (blocks merge pairwise) between kFewestErrorBlocks and kMaxBlocks.
+      const std::size_t fit = kMaxBlockedSums / std::max<std::size_t>(1, sample.size());
+      max_blocks_ = std::clamp(fit - fit % 2, kFewestErrorBlocks, kMaxBlocks);
+    }
     for (std::size_t b = 0; b < sample.size(); ++b) open_[b] += sample[b];
     open_weight_ += weight;
     if (++open_samples_ < block_length_) return;
@@ -36,15 +47,15 @@ class BlockSums {
     open_.assign(sample.size(), Sums{});
     open_weight_ = 0.0;
     open_samples_ = 0;
-    if (blocks_.size() < kMaxBlocks) return;
-    for (std::size_t b = 0; b < kMaxBlocks / 2; ++b) {
+    if (blocks_.size() < max_blocks_) return;
+    for (std::size_t b = 0; b < max_blocks_ / 2; ++b) {
       std::vector<Sums> merged = std::move(blocks_[2 * b]);  // (b = 0 would self-move)
       for (std::size_t bin = 0; bin < merged.size(); ++bin) merged[bin] += blocks_[2 * b + 1][bin];
       blocks_[b] = std::move(merged);
       weights_[b] = weights_[2 * b] + weights_[2 * b + 1];
     }
-    blocks_.resize(kMaxBlocks / 2);
-    weights_.resize(kMaxBlocks / 2);
+    blocks_.resize(max_blocks_ / 2);
+    weights_.resize(max_blocks_ / 2);
     block_length_ *= 2;
   }
 
@@ -60,6 +71,7 @@ class BlockSums {
   std::vector<Sums> open_;
   double open_weight_ = 0.0;
   long block_length_ = 1, open_samples_ = 0;
+  std::size_t max_blocks_ = kMaxBlocks;
 };
 
 // Standard error of the mean of per-block values; NaN with fewer than 2 kMinErrorBlocks of them.
