@@ -19,6 +19,7 @@
 #include "test_support.hpp"
 
 #include "elastic_gas_case.hpp"
+#include "incline_case.hpp"
 
 using namespace grainflow;
 using namespace grainflow::edmd;
@@ -92,6 +93,43 @@ class Recorder : public CollisionObserver {
 // elastic walls at y = 0 and L, else periodic along y too (elastic_gas_case.hpp).
 std::string disc_gas(int n, double phi, double tangential, bool walls, int seed) {
   return test::elastic_gas_case({2, n, phi, 1.0, tangential, walls, seed});
+}
+
+// Unit-mass discs of diameter 1 from `file`, elastic between each other, between walls at y = 0 and
+// `height` with the given restitution and condition, periodic along x (`width`), no gravity.
+std::string walled_discs_case(double width, double height, const std::string& file, double wall_restitution,
+                              const char* condition) {
+  char text[1024];
+  std::snprintf(text, sizeof text, R"([engine]
+kind = "edmd"
+dimension = 2
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [%g, %g, 1.0]
+boundary = { x = "periodic", y = "wall", z = "periodic" }
+[gravity]
+vector = [0.0, 0.0, 0.0]
+[[species]]
+name = "disc"
+diameter = 1.0
+density = %.17g
+count = 0
+[particles]
+init = "file"
+file = "%s"
+[collision]
+restitution = 1.0
+[walls.ylo]
+restitution = %g
+condition = "%s"
+[walls.yhi]
+restitution = %g
+condition = "%s"
+[run]
+duration = 1.0
+)",
+                width, height, 4.0 / M_PI, file.c_str(), wall_restitution, condition, wall_restitution, condition);
+  return text;
 }
 
 EdmdEngine<2> engine2(const std::string& text) {
@@ -212,36 +250,7 @@ TEST(StressProfileShares, KineticPartAboutTheLongTermStripMean) {
 
 TEST(CollisionStress, DiscBouncingBetweenWallsCarriesAUniformFlux) {
   test::ParticleFile file("bouncer.csv", "disc,1.5,2.0,0.0,0.0,1.0,0.0\n");
-  char text[1024];
-  std::snprintf(text, sizeof text, R"([engine]
-kind = "edmd"
-dimension = 2
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [3.0, 4.0, 1.0]
-boundary = { x = "periodic", y = "wall", z = "periodic" }
-[gravity]
-vector = [0.0, 0.0, 0.0]
-[[species]]
-name = "disc"
-diameter = 1.0
-density = %.17g
-count = 0
-[particles]
-init = "file"
-file = "%s"
-[collision]
-restitution = 1.0
-[walls.ylo]
-restitution = 1.0
-condition = "smooth"
-[walls.yhi]
-restitution = 1.0
-condition = "smooth"
-[run]
-duration = 1.0
-)",
-                4.0 / M_PI, file.path().c_str());
+  const std::string text = walled_discs_case(3.0, 4.0, file.path(), 1.0, "smooth");
   EdmdEngine<2> e = engine2(text);
   Recorder<2> rec(e, StripGrid(2, 1, 0.0, 4.0, 4, 3.0));
   const double periods = kRunScale == 1.0 ? 100.0 : 10.0;
@@ -351,35 +360,8 @@ TEST(CollisionStress, GasAtRestPressesOnItsWallsWithItsPressure) {
 
 TEST(CollisionStress, RollingDiscPressesWithItsWeight) {
   const double alpha = 20.0 * M_PI / 180.0, q = 0.5, width = 20.0;
-  test::ParticleFile file("roller.csv", "disc,5.0,1.0,0.0,0.0,0.0,0.0\n");
-  char text[1024];
-  std::snprintf(text, sizeof text, R"([engine]
-kind = "edmd"
-dimension = 2
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [%g, 10.0, 1.0]
-boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
-[gravity]
-vector = [%.17g, %.17g, 0.0]
-[[species]]
-name = "disc"
-diameter = 2.0
-density = %.17g
-count = 0
-[particles]
-init = "file"
-file = "%s"
-[collision]
-restitution = 0.5
-rolling_speed = 0.05
-[walls.ylo]
-restitution = 0.5
-condition = "rough"
-[run]
-duration = 1.0
-)",
-                width, std::sin(alpha), -std::cos(alpha), 1.0 / M_PI, file.path().c_str());
+  test::ParticleFile file("roller.csv", "ball,5.0,1.0,0.0,0.0,0.0,0.0\n");
+  const std::string text = test::incline_case(2, width, alpha, file.path(), "rough", 1.0);
   EdmdEngine<2> e = engine2(text);
   double t = 0.0;
   while (e.counters().rolling_starts == 0 && t < 5.0) e.advance_to(t += 0.01);
@@ -429,36 +411,7 @@ TEST(CollisionObserver, ReportsHeadOnAndWallCollisionsAsWorkedOut) {
                                           "disc,6.0,5.0,0.0,-1.0,0.0,0.0,0.0,0.0,0.0\n"
                                           "disc,8.0,1.0,0.0,0.3,-1.0,0.0,0.0,0.0,2.0\n",
                           "species,x,y,z,vx,vy,vz,wx,wy,wz");
-  char text[1024];
-  std::snprintf(text, sizeof text, R"([engine]
-kind = "edmd"
-dimension = 2
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [10.0, 10.0, 1.0]
-boundary = { x = "periodic", y = "wall", z = "periodic" }
-[gravity]
-vector = [0.0, 0.0, 0.0]
-[[species]]
-name = "disc"
-diameter = 1.0
-density = %.17g
-count = 0
-[particles]
-init = "file"
-file = "%s"
-[collision]
-restitution = 1.0
-[walls.ylo]
-restitution = 0.8
-condition = "rough"
-[walls.yhi]
-restitution = 0.8
-condition = "rough"
-[run]
-duration = 1.0
-)",
-                4.0 / M_PI, file.path().c_str());
+  const std::string text = walled_discs_case(10.0, 10.0, file.path(), 0.8, "rough");
   EdmdEngine<2> e = engine2(text);
   Log log;
   e.set_observer(&log);

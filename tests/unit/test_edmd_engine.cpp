@@ -20,6 +20,7 @@
 #include "test_support.hpp"
 
 #include "elastic_gas_case.hpp"
+#include "incline_case.hpp"
 
 using namespace grainflow;
 using namespace grainflow::edmd;
@@ -295,36 +296,8 @@ void check_rolling(const std::string& condition) {
   // the next 2 time units the motion is the exact uniformly accelerated one: velocity, unwrapped
   // displacement and spin agree with it to round-off (1e-12).
   const double alpha = 20.0 * M_PI / 180.0, q = Dim == 2 ? 0.5 : 0.4, R = 1.0;
-  const double density = Dim == 2 ? 1.0 / M_PI : 3.0 / (4.0 * M_PI);  // unit mass
   test::ParticleFile file("roller.csv", "ball,5.0,1.1,2.0,0.0,0.0,0.0\n");
-  char text[2048];
-  std::snprintf(text, sizeof text, R"([engine]
-kind = "edmd"
-dimension = %d
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [20.0, 10.0, 4.0]
-boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
-[gravity]
-vector = [%.17g, %.17g, 0.0]
-[[species]]
-name = "ball"
-diameter = 2.0
-density = %.17g
-count = 0
-[particles]
-init = "file"
-file = "%s"
-[collision]
-restitution = 0.5
-rolling_speed = 0.05
-[walls.ylo]
-restitution = 0.5
-condition = "%s"
-[run]
-duration = 10.0
-)",
-                Dim, std::sin(alpha), -std::cos(alpha), density, file.path().c_str(), condition.c_str());
+  const std::string text = test::incline_case(Dim, 20.0, alpha, file.path(), condition, 10.0);
   EdmdEngine<Dim> e = engine_from<Dim>(text);
   const auto& p = e.state().particles;
   ASSERT_NEAR(p.mass[0], 1.0, 1e-15);
