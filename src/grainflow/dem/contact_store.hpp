@@ -38,33 +38,52 @@ struct ContactStore {
     }
   }
 
-  // Moves pair states from `old_list` (built when ids_at_build was recorded) onto `new_list`.
-  void transfer(const NeighborPairs& old_list, const NeighborPairs& new_list, const std::vector<std::uint32_t>& ids) {
-    std::vector<State> states(new_list.pair_count());
-    std::vector<std::uint8_t> touching(new_list.pair_count(), 0);
-    if (!old_list.offsets.empty()) {
-      for (std::size_t i = 0; i + 1 < new_list.offsets.size(); ++i) {
-        const std::uint32_t old_i = index_at_build[ids[i]];
-        const std::uint32_t old_begin = old_list.offsets[old_i], old_end = old_list.offsets[old_i + 1];
-        bool any = false;
-        for (std::uint32_t k = old_begin; k < old_end && !any; ++k) any = pair_touching[k] != 0;
-        if (!any) continue;
-        for (std::uint32_t k = new_list.offsets[i]; k < new_list.offsets[i + 1]; ++k) {
-          const std::uint32_t partner_id = ids[new_list.partner[k]];
-          for (std::uint32_t q = old_begin; q < old_end; ++q) {
-            if (ids_at_build[old_list.partner[q]] == partner_id) {
-              if (pair_touching[q]) {
-                states[k] = pair_state[q];
-                touching[k] = 1;
-              }
-              break;
-            }
+  // The states of the pairs touching now, by the list's particle index and the partner's id: all a
+  // rebuild must carry (most listed pairs do not touch).
+  struct Touching {
+    std::vector<std::uint32_t> offsets;     // size n + 1, over the indices of the list they came from
+    std::vector<std::uint32_t> partner_id;
+    std::vector<State> state;
+  };
+
+  // Takes the touching pairs' states out of `old_list` (built when ids_at_build was recorded) and
+  // frees the per-pair arrays, so that the next list is built without the old one's states beside it.
+  Touching take_touching(const NeighborPairs& old_list) {
+    Touching kept;
+    const std::size_t n = old_list.offsets.empty() ? 0 : old_list.offsets.size() - 1;
+    kept.offsets.assign(n + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::uint32_t k = old_list.offsets[i]; k < old_list.offsets[i + 1]; ++k) {
+        if (!pair_touching[k]) continue;
+        kept.partner_id.push_back(ids_at_build[old_list.partner[k]]);
+        kept.state.push_back(pair_state[k]);
+      }
+      kept.offsets[i + 1] = static_cast<std::uint32_t>(kept.state.size());
+    }
+    std::vector<State>().swap(pair_state);
+    std::vector<std::uint8_t>().swap(pair_touching);
+    return kept;
+  }
+
+  // Puts the kept states onto `new_list`, whose particle ids are `ids`.
+  void restore(const Touching& kept, const NeighborPairs& new_list, const std::vector<std::uint32_t>& ids) {
+    pair_state.assign(new_list.pair_count(), State{});
+    pair_touching.assign(new_list.pair_count(), 0);
+    for (std::size_t i = 0; i + 1 < new_list.offsets.size() && !kept.state.empty(); ++i) {
+      const std::uint32_t old_i = index_at_build[ids[i]];
+      const std::uint32_t old_begin = kept.offsets[old_i], old_end = kept.offsets[old_i + 1];
+      if (old_begin == old_end) continue;
+      for (std::uint32_t k = new_list.offsets[i]; k < new_list.offsets[i + 1]; ++k) {
+        const std::uint32_t partner_id = ids[new_list.partner[k]];
+        for (std::uint32_t q = old_begin; q < old_end; ++q) {
+          if (kept.partner_id[q] == partner_id) {
+            pair_state[k] = kept.state[q];
+            pair_touching[k] = 1;
+            break;
           }
         }
       }
     }
-    pair_state.swap(states);
-    pair_touching.swap(touching);
     record_ids(ids);
   }
 

@@ -193,16 +193,20 @@ class DemEngine {
       contacts_.permute_walls(order);
       grid_.bin(p.position);
     }
-    NeighborPairs fresh;
-    grid_.build_pairs(p, s_.box, s_.skin, threads_, fresh);
+    // The touching pairs' states are set aside and the old list freed before the new one is built,
+    // so that the peak memory holds one list, not two.
+    typename ContactStore<State>::Touching kept;
+    if (!first) kept = contacts_.take_touching(pairs_);
+    const std::size_t expected_pairs = pairs_.pair_count();
+    pairs_ = NeighborPairs{};
+    grid_.build_pairs(p, s_.box, s_.skin, threads_, pairs_, expected_pairs);
     if (first) {
-      contacts_.pair_state.assign(fresh.pair_count(), State{});
-      contacts_.pair_touching.assign(fresh.pair_count(), 0);
+      contacts_.pair_state.assign(pairs_.pair_count(), State{});
+      contacts_.pair_touching.assign(pairs_.pair_count(), 0);
       contacts_.record_ids(p.id);
     } else {
-      contacts_.transfer(pairs_, fresh, p.id);
+      contacts_.restore(kept, pairs_, p.id);
     }
-    pairs_ = std::move(fresh);
     position_at_build_ = p.position;
     ++stats_.rebuilds;
   }

@@ -43,7 +43,7 @@ void CellGrid::bin(const std::vector<Vec3>& position) {
 }
 
 void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, double skin, int threads,
-                           NeighborPairs& out) const {
+                           NeighborPairs& out, std::size_t expected_pairs) const {
   const std::size_t n = p.size();
   threads = std::max(1, threads);
   std::vector<std::vector<std::uint32_t>> partners(threads), counts(threads);
@@ -61,6 +61,8 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
     auto& my_codes = codes[t];
     auto& my_counts = counts[t];
     my_counts.assign(end - begin, 0);
+    my_partners.reserve(expected_pairs / threads + expected_pairs / threads / 16);  // + 6 %: lists vary
+    my_codes.reserve(my_partners.capacity());
     for (std::size_t i = begin; i < end; ++i) {
       const int cell = cell_index_[i];
       const int ci[3] = {cell % cells_[0], (cell / cells_[0]) % cells_[1], cell / (cells_[0] * cells_[1])};
@@ -119,6 +121,8 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
     std::copy(partners[t].begin(), partners[t].end(), out.partner.begin() + cursor);
     std::copy(codes[t].begin(), codes[t].end(), out.shift.begin() + cursor);
     cursor += partners[t].size();
+    std::vector<std::uint32_t>().swap(partners[t]);  // freed as it goes: the peak holds about one list
+    std::vector<std::uint8_t>().swap(codes[t]);
     for (std::uint32_t c : counts[t]) {
       out.offsets[i + 1] = out.offsets[i] + c;
       ++i;

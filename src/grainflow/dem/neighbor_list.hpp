@@ -27,8 +27,10 @@ class CellGrid {
   void setup(const PeriodicBox& box, double cell_size, std::size_t particles);
   void bin(const std::vector<Vec3>& position);
   const std::vector<std::uint32_t>& cell_order() const { return order_; }
+  // `expected_pairs` (the last list's length, or 0) sizes the per-thread buffers up front, so that
+  // their growth by doubling does not set the peak memory.
   void build_pairs(const ParticleStore& particles, const PeriodicBox& box, double skin, int threads,
-                   NeighborPairs& out) const;
+                   NeighborPairs& out, std::size_t expected_pairs = 0) const;
 
  private:
   int cell_of(const Vec3& x) const;
