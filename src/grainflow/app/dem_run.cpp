@@ -1,5 +1,7 @@
 #include "grainflow/app/dem_run.hpp"
 #include "grainflow/app/run_support.hpp"
+#include "grainflow/app/checkpointing.hpp"
+#include "grainflow/app/interrupt.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -117,6 +119,17 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   namespace fs = std::filesystem;
   const dem::DerivedQuantities derived = dem::derive(c);
   dem::DemEngineVariant engine = dem::make_engine(c, dem::build_dem_state(c), options.threads);
+  const long long particle_count =
+      std::visit([](auto& e) { return static_cast<long long>(e.state().particles.size()); }, engine);
+  // Checkpoints cover the engine and every accumulator but not the HDF5 files written as the run
+  // goes; refused up front rather than continued wrongly.
+  const bool streams_hdf5 = c.trajectory.enabled || c.zone_series.enabled;
+  if (streams_hdf5 && (!options.restart.empty() || c.output.checkpoint_interval > 0.0))
+    throw InputError(c.path, c.trajectory.enabled ? "trajectory" : "zone_series",
+                     "checkpoints and --restart do not cover trajectory.h5 / zone_series.h5 yet (they are written "
+                     "as the run goes); turn them off or set output.checkpoint_interval = 0");
+  std::optional<io::Checkpoint> restart;
+  if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count);
 
   fs::create_directories(options.output_directory);
   const std::string dir = options.output_directory;
@@ -159,6 +172,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   const observe::BedSurfaceThresholds bed_thresholds{c.output.bed_gap_fraction, c.output.bed_surface_fraction};
   const bool floor_below = c.gravity[axis] < 0.0;  // bed height needs gravity toward the low face
 
+  Schedule checkpoint_schedule(c.output.checkpoint_interval, dt);
   std::vector<TimeseriesRow> rows;
   std::vector<std::string> errors, warnings;
   Progress progress(!options.quiet && ::isatty(2), c.run.duration);
@@ -166,6 +180,22 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   auto last_flush = wall_start;
   double max_overlap_seen = 0.0;
   int exit_status = 0;
+  long first_step = 0;  // steps before this process's (a restart's checkpoint)
+
+  // The run's whole state, one function for both directions (checkpoint and restart).
+  auto transfer = [&](io::StateArchive& ar, auto& e) {
+    ar.tag("dem run");
+    ar(e, rows, profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
+    if (snapshots) ar(*snapshots);
+    if (field) ar(*field);
+    if (tracers) ar(*tracers);
+    ar.tag("end of dem run");
+  };
+  auto checkpoint = [&](auto& e) {
+    write_run_checkpoint(dir, c, e.state().particles, e.state().time, e.state().step,
+                         [&](io::StateArchive& ar) { transfer(ar, e); });
+  };
+  int interrupted = 0;
 
   auto record = [&](auto& e) {
     auto& st = e.state();
@@ -206,9 +236,15 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   try {
     std::visit(
         [&](auto& e) {
-          record(e);
-          if (snapshots) snapshots->add(e.state().particles, e.state().time);
-          for (long step = 1; step <= total_steps; ++step) {
+          if (restart) {
+            restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
+            first_step = e.state().step;
+          } else {
+            record(e);
+            if (snapshots) snapshots->add(e.state().particles, e.state().time);
+          }
+          for (long step = e.state().step + 1; step <= total_steps; ++step) {
+            if ((interrupted = pending_interrupt()) != 0) break;
             e.step();
             if (trajectory) trajectory->sampler->observe(e.state().particles, e.state().box, e.state().time - dt, e.state().time);
             if (zone_series) zone_series->observe(e.state(), profile, c);
@@ -226,12 +262,22 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
               }
             }
             if (snapshot_schedule.due(step) && snapshots) snapshots->add(e.state().particles, e.state().time);
+            if (checkpoint_schedule.due(step) && step < total_steps) checkpoint(e);
           }
+          // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
+          if (!streams_hdf5 && (interrupted != 0 || c.output.checkpoint_interval > 0.0)) checkpoint(e);
         },
         engine);
   } catch (const RunError& error) {
     errors.push_back(error.what());
     exit_status = 1;
+  }
+  if (interrupted != 0) {
+    const double t = std::visit([](auto& e) { return e.state().time; }, engine);
+    errors.push_back(std::string("interrupted by ") + signal_name(interrupted) + " at t = " + std::to_string(t) + " s; " +
+                     (streams_hdf5 ? std::string("no checkpoint (trajectory.h5 / zone_series.h5 are not covered)")
+                                   : "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5"));
+    exit_status = 128 + interrupted;
   }
   progress.finish();
   if (trajectory) trajectory->finish(warnings);
@@ -271,7 +317,9 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         summary.integer("steps", st.step);
         summary.number("time_step", st.time_step);
         summary.integer("threads", options.threads);
-        summary.number("particle_steps_per_second", wall_seconds > 0 ? moving * double(st.step) / wall_seconds : 0.0);
+        summary.number("particle_steps_per_second",
+                       wall_seconds > 0 ? moving * double(st.step - first_step) / wall_seconds : 0.0);
+        if (restart) summary.string("restarted_from", options.restart);
         summary.number("max_overlap_over_diameter", max_overlap_seen);
         summary.number("kinetic_energy", global.kinetic_energy);
         summary.number("rotational_energy", global.rotational_energy);

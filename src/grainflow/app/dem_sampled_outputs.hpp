@@ -103,6 +103,12 @@ struct FieldOutput {
     field->sample(st.particles, bin);
   }
   void write(const std::string& dir, const CaseConfig& c) const;
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    if (field) ar(*field);  // made by the constructor from the case, as on the restart
+    ar(next);
+  }
 };
 
 // tracers.csv ([tracers], Lan 1994 section 5.2): rows of time, id, position (unwrapped), velocity,
@@ -128,6 +134,11 @@ struct TracerOutput {
             row(st.time, p.id[i], e.unwrapped_position(i), p.velocity[i], touch[i].particles, touch[i].walls, floor));
   }
   void write(const std::string& path) const;
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(next, rows);
+  }
 
  private:
   static std::string row(double time, std::uint32_t id, const Vec3& x, const Vec3& v, int particles, int walls,

@@ -13,6 +13,9 @@
 #include "grainflow/app/constitutive_command.hpp"
 #include "grainflow/app/dem_run.hpp"
 #include "grainflow/app/edmd_run.hpp"
+#include "grainflow/app/interrupt.hpp"
+#include "grainflow/app/run_support.hpp"
+#include "grainflow/io/checkpoint_file.hpp"
 #include "grainflow/app/sweep_command.hpp"
 #include "grainflow/app/theory_command.hpp"
 #include "grainflow/core/case_loader.hpp"
@@ -76,6 +79,9 @@ int main(int argc, char** argv) {
   run->add_option("--set", overrides, "override a case key: --set contact.k1=2e6")->type_name("KEY=VALUE");
   run->add_option("--threads", threads, "OpenMP threads (default 1)")->check(CLI::Range(1, 1024));
   run->add_flag("--quiet", quiet, "no progress line");
+  std::string restart_path;
+  run->add_option("--restart", restart_path,
+                  "continue from a checkpoint.h5 of this case (outputs go to its folder unless -o is given)");
 
   auto* check = app.add_subcommand("check", "validate a case and print its derived quantities; runs nothing");
   check->add_option("case", case_path, "case file (TOML)")->required();
@@ -178,6 +184,13 @@ int main(int argc, char** argv) {
       if (*start_option) calibrate_options.start_k1 = calibrate_start_k1;
       return app::run_calibration(calibrate_options);
     }
+    if (app.got_subcommand("run") && !restart_path.empty()) {
+      // The checkpoint's own --set assignments first, so that a restart needs only the case and the
+      // file; assignments given now (a longer run.duration, say) come after and win.
+      std::vector<std::string> all = app::split_overrides(io::read_checkpoint_header(restart_path).case_overrides);
+      all.insert(all.end(), overrides.begin(), overrides.end());
+      overrides = all;
+    }
     const CaseConfig c = load_case(case_path, overrides);
     if (app.got_subcommand("check")) {
       app::print_check(c, std::cout);
@@ -185,6 +198,12 @@ int main(int argc, char** argv) {
     }
     app::RunOptions options;
     options.output_directory = output_dir.empty() ? (fs::path("runs") / fs::path(case_path).stem()).string() : output_dir;
+    if (output_dir.empty() && !restart_path.empty()) {
+      const fs::path folder = fs::path(restart_path).parent_path();
+      options.output_directory = folder.empty() ? "." : folder.string();
+    }
+    options.restart = restart_path;
+    app::catch_interrupts();
     options.threads = threads;
     options.quiet = quiet;
     return c.engine.kind == "edmd" ? app::run_edmd(c, options) : app::run_dem(c, options);

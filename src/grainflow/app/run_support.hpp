@@ -22,6 +22,10 @@ class Schedule {
  public:
   Schedule(double interval, double dt) : interval_(interval), dt_(dt) { advance(); }
   // True once per interval, at the first step at or after the next scheduled one.
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(k_, next_);
+  }
   bool due(long step) {
     if (interval_ <= 0.0 || step < next_) return false;
     advance();

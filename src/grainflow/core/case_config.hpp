@@ -135,6 +135,7 @@ struct RunConfig {
 struct OutputConfig {
   double interval = 0.01;         // s between time-series rows
   double snapshot_interval = 0.0; // s between VTU snapshots (0 = none)
+  double checkpoint_interval = 0.0; // s between checkpoint.h5 rewrites, and one at the end (0 = only on SIGINT/SIGTERM)
   double profile_interval = 0.0;  // s between profile samples (0 = interval / 10)
   double average_start = 0.0;     // s, long-term averages start here
   long long average_start_collisions = 0;  // edmd: ... and not before this many particle collisions

@@ -365,6 +365,8 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (!(o.interval > 0.0)) r.fail("interval", "must be positive");
     o.snapshot_interval = r.number("snapshot_interval", 0.0);
     if (o.snapshot_interval < 0.0) r.fail("snapshot_interval", "must not be negative");
+    o.checkpoint_interval = r.number("checkpoint_interval", 0.0);
+    if (o.checkpoint_interval < 0.0) r.fail("checkpoint_interval", "must not be negative");
     o.profile_interval = r.number("profile_interval", 0.0);
     if (o.profile_interval < 0.0) r.fail("profile_interval", "must not be negative");
     o.average_start = r.number("average_start", 0.0);

@@ -20,6 +20,11 @@ struct ContactStore {
   std::vector<std::uint32_t> ids_at_build;       // index -> id when the list was built
   std::vector<std::uint32_t> index_at_build;     // id -> index when the list was built
 
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(pair_state, pair_touching, wall_state, wall_touching, ids_at_build, index_at_build);
+  }
+
   void resize_walls(std::size_t walls, std::size_t particles) {
     wall_state.assign(walls, std::vector<State>(particles));
     wall_touching.assign(walls, std::vector<std::uint8_t>(particles, 0));

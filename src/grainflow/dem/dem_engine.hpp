@@ -62,6 +62,19 @@ class DemEngine {
   const NeighborPairs& pairs() const { return pairs_; }
   ContactStatistics& statistics() { return stats_; }
 
+  // Everything that changes as the run goes (checkpoints): the rest follows from the case, so a
+  // restart builds the engine from its case first and then reads this over it.
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar.tag("dem engine");
+    ar(s_.particles, s_.time, s_.step, s_.bump_velocity, s_.bump_displacement, s_.expansion_rate);
+    std::size_t walls = s_.walls.size();
+    ar(walls);
+    if (walls != s_.walls.size()) throw RunError("checkpoint: the case has a different number of walls");
+    for (auto& wall : s_.walls) ar(wall.position, wall.velocity);
+    ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_);
+  }
+
   // One velocity-Verlet step: half kick, drift, walls, (rebuild), forces, half kick.
   void step() {
     ParticleStore& p = s_.particles;

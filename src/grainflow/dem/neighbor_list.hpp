@@ -15,6 +15,11 @@ struct NeighborPairs {
   std::vector<std::uint32_t> offsets;  // size n + 1; pairs of i are [offsets[i], offsets[i+1])
   std::vector<std::uint32_t> partner;  // index j
   std::vector<std::uint8_t> shift;     // image of j: x_j + shift_table[code]
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(offsets, partner, shift);
+  }
   std::size_t pair_count() const { return partner.size(); }
 };
 

@@ -133,6 +133,18 @@ void H5Writer::write(const std::string& name, const std::vector<double>& values,
                "write dataset '" + name + "'");
 }
 
+void H5Writer::write_bytes(const std::string& name, const std::vector<std::uint8_t>& bytes) {
+  hsize_t dims[1] = {bytes.size()};
+  H5Handle space(check(H5Screate_simple(1, dims, nullptr), path_, "describe '" + name + "'"), close_space);
+  H5Handle d(check(H5Dcreate2(file_.get(), name.c_str(), H5T_NATIVE_UINT8, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                              H5P_DEFAULT),
+                   path_, "create dataset '" + name + "'"),
+             close_dataset);
+  if (!bytes.empty())
+    check_status(H5Dwrite(d.get(), H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()), path_,
+                 "write dataset '" + name + "'");
+}
+
 void H5Writer::write(const std::string& name, const std::vector<std::int64_t>& values) {
   hsize_t dims[1] = {values.size()};
   H5Handle space(check(H5Screate_simple(1, dims, nullptr), path_, "describe '" + name + "'"), close_space);
@@ -194,6 +206,18 @@ bool H5Reader::has(const std::string& name) const {
 
 bool H5Reader::has_attribute(const std::string& where, const std::string& key) const {
   return H5Aexists_by_name(file_.get(), where.c_str(), key.c_str(), H5P_DEFAULT) > 0;
+}
+
+std::vector<std::uint8_t> H5Reader::read_bytes(const std::string& name) const {
+  H5Handle d(check(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), path_, "open dataset '" + name + "'"), close_dataset);
+  H5Handle space(check(H5Dget_space(d.get()), path_, "get the space of '" + name + "'"), close_space);
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count < 0) fail(path_, "read the size of '" + name + "'");
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(count));
+  if (!bytes.empty())
+    check_status(H5Dread(d.get(), H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()), path_,
+                 "read dataset '" + name + "'");
+  return bytes;
 }
 
 H5Array H5Reader::read(const std::string& name) const {

@@ -69,6 +69,7 @@ class H5Writer {
   void write(const std::string& name, const std::vector<double>& values,
              const std::vector<unsigned long long>& shape);
   void write(const std::string& name, const std::vector<std::int64_t>& values);
+  void write_bytes(const std::string& name, const std::vector<std::uint8_t>& bytes);  // opaque state (checkpoints)
   // Attributes on the object `where` ("/" for the file).
   void attribute(const std::string& where, const std::string& key, double value);
   void attribute(const std::string& where, const std::string& key, std::int64_t value);
@@ -94,6 +95,7 @@ class H5Reader {
   bool has(const std::string& name) const;
   bool has_attribute(const std::string& where, const std::string& key) const;
   H5Array read(const std::string& name) const;            // any numeric dataset, as doubles
+  std::vector<std::uint8_t> read_bytes(const std::string& name) const;
   double number(const std::string& where, const std::string& key) const;
   std::string text(const std::string& where, const std::string& key) const;
   const std::string& path() const { return path_; }

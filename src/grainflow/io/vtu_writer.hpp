@@ -20,6 +20,16 @@ class PvdSeries {
   void add(const ParticleStore& particles, double time);
   std::size_t size() const { return entries_.size(); }
 
+  template <class Archive>
+  void serialize(Archive& ar) {
+    std::vector<double> times;
+    std::vector<std::string> files;
+    for (const auto& [t, f] : entries_) times.push_back(t), files.push_back(f);
+    ar(times, files);
+    entries_.clear();
+    for (std::size_t k = 0; k < times.size() && k < files.size(); ++k) entries_.emplace_back(times[k], files[k]);
+  }
+
  private:
   std::string directory_;
   std::vector<std::pair<double, std::string>> entries_;

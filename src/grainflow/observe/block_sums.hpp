@@ -59,6 +59,11 @@ class BlockSums {
     block_length_ *= 2;
   }
 
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(blocks_, weights_, open_, open_weight_, block_length_, open_samples_, max_blocks_);
+  }
+
   // The full blocks, oldest first: blocks()[k][bin] sums block_length() samples.
   const std::vector<std::vector<Sums>>& blocks() const { return blocks_; }
   long block_length() const { return block_length_; }

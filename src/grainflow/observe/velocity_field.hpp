@@ -37,6 +37,11 @@ class VelocityField {
   int rows() const { return rows_; }
   double cell() const { return cell_; }  // m
 
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(long_term_, by_bin_, samples_);
+  }
+
  private:
   struct Sums {
     long visits = 0;

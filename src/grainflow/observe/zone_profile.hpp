@@ -51,6 +51,11 @@ class ZoneProfile {
   long samples() const { return samples_; }
   int axis() const { return axis_; }
 
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(sums_, samples_, blocks_);
+  }
+
  private:
   struct Sums {
     double mass = 0.0, solid_volume = 0.0;

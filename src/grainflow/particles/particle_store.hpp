@@ -35,6 +35,12 @@ struct ParticleStore {
   // Applies `order` (new index -> old index) to every array.
   void permute(const std::vector<std::uint32_t>& order);
   bool moves(std::size_t i) const { return motion[i] == Motion::free; }
+
+  template <class Archive>  // checkpoints (io/state_archive.hpp)
+  void serialize(Archive& ar) {
+    ar(position, velocity, angular_velocity, force, torque, radius, target_radius, inv_mass, inv_inertia, mass, species,
+       id, motion, wall, image);
+  }
 };
 
 }  // namespace grainflow

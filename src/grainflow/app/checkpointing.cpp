@@ -1,0 +1,22 @@
+#include "grainflow/app/checkpointing.hpp"
+
+namespace grainflow::app {
+
+io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles) {
+  io::Checkpoint checkpoint = io::read_checkpoint(path);
+  const auto& h = checkpoint.header;
+  auto refuse = [&](const std::string& what) {
+    throw InputError(path, "", "this checkpoint cannot continue case '" + c.path + "': " + what);
+  };
+  if (h.engine != c.engine.kind) refuse("it is from a '" + h.engine + "' run, the case is '" + c.engine.kind + "'");
+  if (h.dimension != c.engine.dimension)
+    refuse("it is " + std::to_string(h.dimension) + "D, the case " + std::to_string(c.engine.dimension) + "D");
+  if (h.particles != particles)
+    refuse("it holds " + std::to_string(h.particles) + " particles, the case makes " + std::to_string(particles));
+  if (h.time > c.run.duration)
+    refuse("it is at t = " + std::to_string(h.time) + ", past the case's run.duration = " + std::to_string(c.run.duration) +
+           " (raise it with --set run.duration=...)");
+  return checkpoint;
+}
+
+}  // namespace grainflow::app

@@ -1,0 +1,46 @@
+// Checkpoints in a run driver: reading one for --restart (checked against the case before anything
+// runs), and writing the driver's whole state (engine and every accumulator) through one function
+// that serves both directions, so what is saved and what is restored cannot drift apart.
+#pragma once
+
+#include <string>
+
+#include "grainflow/app/run_support.hpp"
+#include "grainflow/core/case_config.hpp"
+#include "grainflow/core/error.hpp"
+#include "grainflow/core/version.hpp"
+#include "grainflow/io/checkpoint_file.hpp"
+#include "grainflow/io/state_archive.hpp"
+
+namespace grainflow::app {
+
+// Reads `path` and checks it belongs to a case of this engine, dimension and particle count.
+io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles);
+
+// Writes dir/checkpoint.h5 from `transfer(archive)`, which must be the same function a restart
+// reads with.
+template <class Transfer>
+void write_run_checkpoint(const std::string& dir, const CaseConfig& c, const ParticleStore& particles, double time,
+                          long long step, Transfer&& transfer) {
+  io::StateArchive ar = io::StateArchive::for_writing();
+  transfer(ar);
+  io::CheckpointHeader h;
+  h.engine = c.engine.kind;
+  h.dimension = c.engine.dimension;
+  h.particles = static_cast<long long>(particles.size());
+  h.time = time;
+  h.step = step;
+  h.version = kVersion;
+  h.case_path = c.path;
+  h.case_overrides = join_overrides(c.overrides);
+  io::write_checkpoint(dir + "/checkpoint.h5", h, particles, ar.bytes());
+}
+
+template <class Transfer>
+void restore_run_state(const io::Checkpoint& checkpoint, const std::string& path, Transfer&& transfer) {
+  io::StateArchive ar = io::StateArchive::for_reading(checkpoint.state, path);
+  transfer(ar);
+  ar.expect_end();
+}
+
+}  // namespace grainflow::app

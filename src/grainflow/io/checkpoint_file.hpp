@@ -1,0 +1,37 @@
+// checkpoint.h5: a run's exact state, to continue it with `grainflow run CASE --restart FILE`.
+// The file holds what a person wants to look at (attributes naming the run, the particles as
+// datasets for h5py or h5dump) and, in /state, the bytes every component wrote through its
+// serialize() (io/state_archive.hpp), which the restart reads back. Written under a temporary
+// name and renamed, so a run killed while writing leaves the previous checkpoint intact.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "grainflow/particles/particle_store.hpp"
+
+namespace grainflow::io {
+
+struct CheckpointHeader {
+  std::string engine;       // "dem" | "edmd"
+  long long dimension = 3;
+  long long particles = 0;
+  double time = 0.0;        // s (or the case's time unit)
+  long long step = 0;       // dem: steps; edmd: events
+  std::string version, case_path, case_overrides;
+};
+
+void write_checkpoint(const std::string& path, const CheckpointHeader& header, const ParticleStore& particles,
+                      const std::vector<std::uint8_t>& state);
+
+struct Checkpoint {
+  CheckpointHeader header;
+  std::vector<std::uint8_t> state;
+};
+
+// Throw InputError naming the file (missing, not a checkpoint, damaged).
+Checkpoint read_checkpoint(const std::string& path);
+CheckpointHeader read_checkpoint_header(const std::string& path);
+
+}  // namespace grainflow::io
