@@ -76,6 +76,13 @@ void EdmdCollisionOutputs::finish(edmd::EdmdEngine<Dim>& e) {
   e.set_observer(nullptr);
 }
 
+template <int Dim>
+void EdmdCollisionOutputs::resume(edmd::EdmdEngine<Dim>& e) {
+  if (started_) e.set_observer(this);
+}
+
+template void EdmdCollisionOutputs::resume(edmd::EdmdEngine<2>&);
+template void EdmdCollisionOutputs::resume(edmd::EdmdEngine<3>&);
 template void EdmdCollisionOutputs::sample(edmd::EdmdEngine<2>&);
 template void EdmdCollisionOutputs::sample(edmd::EdmdEngine<3>&);
 template void EdmdCollisionOutputs::finish(edmd::EdmdEngine<2>&);

@@ -36,6 +36,15 @@ class EdmdCollisionOutputs final : public edmd::CollisionObserver {
   template <int Dim>
   void finish(edmd::EdmdEngine<Dim>& e);
 
+  // After a restart restored this: observe `e` again if averaging had begun.
+  template <int Dim>
+  void resume(edmd::EdmdEngine<Dim>& e);
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(stress_, walls_, angles_, started_, last_);
+  }
+
   void on_pair(const edmd::PairCollision& c) override;
   void on_wall(const edmd::WallCollision& c) override;
 

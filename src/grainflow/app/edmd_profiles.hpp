@@ -45,6 +45,12 @@ class EdmdProfiles {
   std::vector<StripKinematics> strip_kinematics() const;
   long samples() const { return profile_.samples(); }
 
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(profile_, next_, first_sample_, sum_height_, sum_gap_, sum_bottom_speed_, sum_top_speed_, bulk_blocks_, bottom_,
+       thickness_, cross_section_);
+  }
+
  private:
   struct Derived;  // du/dy, S and plug flow per strip; chute and Couette scalars
   void derive_strips(const std::vector<observe::StripAverages>& strips, Derived& d) const;

@@ -15,6 +15,8 @@
 #include "grainflow/app/edmd_profiles.hpp"
 #include "grainflow/app/edmd_trajectory_output.hpp"
 #include "grainflow/app/run_support.hpp"
+#include "grainflow/app/checkpointing.hpp"
+#include "grainflow/app/interrupt.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
@@ -44,6 +46,14 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   namespace fs = std::filesystem;
   const int dim = c.engine.dimension;
   edmd::EdmdState initial = edmd::build_edmd_state(c);
+  // Checkpoints cover the engine and every accumulator but not trajectory.h5, written as the run goes.
+  if (c.trajectory.enabled && (!options.restart.empty() || c.output.checkpoint_interval > 0.0))
+    throw InputError(c.path, "trajectory",
+                     "checkpoints and --restart do not cover trajectory.h5 yet (it is written as the run goes); turn "
+                     "it off or set output.checkpoint_interval = 0");
+  std::optional<io::Checkpoint> restart;
+  if (!options.restart.empty())
+    restart = read_restart(options.restart, c, static_cast<long long>(initial.particles.size()));
   EdmdProfiles profiles(c, initial);
   EdmdVariant engine = dim == 2 ? EdmdVariant(std::in_place_index<0>, std::move(initial))
                                 : EdmdVariant(std::in_place_index<1>, std::move(initial));
@@ -108,16 +118,41 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   std::optional<EdmdCollisionOutputs> collision_outputs;
 
   const double end_time = c.run.duration;
+  // Rows, snapshots, samples and checkpoints each on their own exact grid k * interval.
+  long row = 1, shot = 1, checkpoints = 1;
+  // The run's whole state, one function for both directions (checkpoint and restart).
+  auto transfer = [&](io::StateArchive& ar, auto& e) {
+    ar.tag("edmd run");
+    ar(e, rows, last_time, last_virial, average_kinetic, average_temperature, average_virial, average_span, average_rows);
+    ar(row, shot, checkpoints, profiles);
+    if (collision_outputs) ar(*collision_outputs);
+    if (snapshots) ar(*snapshots);
+    ar.tag("end of edmd run");
+  };
+  auto checkpoint = [&](auto& e) {
+    write_run_checkpoint(dir, c, e.state().particles, e.state().time, e.counters().events,
+                         [&](io::StateArchive& ar) { transfer(ar, e); });
+  };
+  int interrupted = 0;
+  long long first_events = 0, first_collisions = 0;  // before this process (a restart's checkpoint)
   try {
     std::visit(
         [&](auto& e) {
-          record(e);
-          if (snapshots) snapshots->add(e.state().particles, e.state().time);
           if (c.output.collision_stresses) collision_outputs.emplace(c, e.state());
-          // Rows, snapshots and samples each on their own exact grid k * interval: advance to whichever is next.
-          long row = 1, shot = 1;
+          if (restart) {
+            restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
+            if (collision_outputs) collision_outputs->resume(e);
+            first_events = e.counters().events;
+            first_collisions = e.counters().collisions;
+          } else {
+            record(e);
+            if (snapshots) snapshots->add(e.state().particles, e.state().time);
+          }
+          const double checkpoint_interval = c.output.checkpoint_interval;
           try {
-            while (true) {
+            while (e.state().time < end_time) {
+              // Between advances every particle is current: a checkpoint here continues exactly.
+              if ((interrupted = pending_interrupt()) != 0) break;
               const double next_row = std::min(end_time, row * c.output.interval);
               const double next_shot = snapshots ? shot * c.output.snapshot_interval : kNeverTime;
               const double next_state = trajectory ? trajectory->next_time() : kNeverTime;
@@ -138,7 +173,13 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
               progress.update(t);
               if (t >= end_time) break;
               if (c.run.collisions > 0 && e.counters().collisions >= c.run.collisions) break;
+              if (checkpoint_interval > 0.0 && t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) {
+                while (t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) ++checkpoints;
+                checkpoint(e);
+              }
             }
+            // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
+            if (!c.trajectory.enabled && (interrupted != 0 || checkpoint_interval > 0.0)) checkpoint(e);
           } catch (const RunError&) {
             e.synchronize(e.state().time);  // the outputs show every particle at one instant
             throw;
@@ -148,6 +189,13 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   } catch (const RunError& error) {
     errors.push_back(error.what());
     exit_status = 1;
+  }
+  if (interrupted != 0) {
+    const double t = std::visit([](auto& e) { return e.state().time; }, engine);
+    errors.push_back(std::string("interrupted by ") + signal_name(interrupted) + " at t = " + std::to_string(t) + "; " +
+                     (c.trajectory.enabled ? std::string("no checkpoint (trajectory.h5 is not covered)")
+                                           : "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5"));
+    exit_status = 128 + interrupted;
   }
   progress.finish();
   const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -207,8 +255,10 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
         summary.integer("stale_events", k.stale);
         summary.integer("neighbor_list_rebuilds", k.list_rebuilds);
         summary.integer("rolling_starts", k.rolling_starts);
-        summary.number("events_per_second", wall_seconds > 0.0 ? k.events / wall_seconds : 0.0);
-        summary.number("collisions_per_second", wall_seconds > 0.0 ? k.collisions / wall_seconds : 0.0);
+        summary.number("events_per_second", wall_seconds > 0.0 ? (k.events - first_events) / wall_seconds : 0.0);
+        summary.number("collisions_per_second",
+                       wall_seconds > 0.0 ? (k.collisions - first_collisions) / wall_seconds : 0.0);
+        if (restart) summary.string("restarted_from", options.restart);
         summary.number("pressure", pressure);
         summary.number("packing_fraction", solids / volume);
         summary.number("compressibility_factor",

@@ -89,6 +89,22 @@ class EdmdEngine {
   EdmdState& state() { return s_; }
   const EdmdState& state() const { return s_; }
   EventCounters& counters() { return counters_; }
+
+  // The whole scheduling state, verbatim (checkpoints): every particle's own clock, the predicted
+  // events and the heap, cells, lists and servo. Re-predicting from positions instead would round
+  // differently and part from the unsplit run. A restart builds the engine from its case first.
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar.tag(Dim == 3 ? "edmd engine 3d" : "edmd engine 2d");
+    ar(s_.particles, s_.box, s_.time, s_.walls);
+    ar(cells_, cell_size_, head_, prev_, cell_, last_collision_, window_events_, window_start_);
+    ar(width_ref_, width_rate_, width_since_, wall_normal_impulse_, servo_since_, servo_gap_, servo_collisions_,
+       servo_state_);
+    ar(flight_, center_, inside_, list_, list_cap_, slot_x_, slot_id_, slot_count_, slot_of_, slot_cap_);
+    ar(rolling_, rolling_count_, event_, event_time_, queue_, counters_);
+    kept_.resize(list_cap_);  // scratch, sized with the lists and slots
+    found_.resize(slot_cap_);
+  }
   // Whether particles search their neighbour lists (straight flights: no gravity, Lees–Edwards or
   // servo) rather than the 27 cells around them.
   bool neighbor_lists() const { return lists_; }

@@ -31,6 +31,12 @@ class EventQueue {
     for (std::size_t k = particles / kArity + 1; k-- > 0;) sift_down(k);
   }
   std::uint32_t top() const { return heap_[0].particle; }
+
+  template <class Archive>  // the times stay where reset() pointed
+  void serialize(Archive& ar) {
+    ar(lines_, size_, position_);
+    heap_ = lines_.data()->node + kOffset;
+  }
   double top_time() const { return heap_[0].time; }  // the event time of top()
   bool empty() const { return size_ == 0; }
   // Call after the event time of particle `i` changed.

@@ -24,6 +24,11 @@ class CollisionAngles {
   double centre(int k) const;                // rad
   long long count(int k) const { return counts_[k]; }
   long long total() const { return total_; }
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(counts_, total_, skipped_);
+  }
   double density(int k) const;               // 1/rad: count / (total x bin width); 0 with no collisions
   long long skipped() const { return skipped_; }  // 3D lines along z, which have no angle in x-y
 

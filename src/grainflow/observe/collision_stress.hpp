@@ -72,6 +72,12 @@ class StressProfile {
   double elapsed() const { return last_time_ - start_time_; }  // s, averaged so far
   int strips() const { return strips_; }
 
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(started_, start_time_, last_time_, samples_, total_, interval_, blocks_, momentum_start_, momentum_end_,
+       thickness_, measure_, lo_);
+  }
+
   // Long-term averages. `top_row`: P_{axis,b} at the top of the strips (a top wall's measurement,
   // zero at a free surface), where the weight integral starts; `gravity` in m/s^2.
   std::vector<StripStress> averages(const Vec3& gravity, const Vec3& top_row) const;

@@ -65,6 +65,11 @@ class StripProfile {
   void sample(const ParticleStore& particles, const StripGrid& grid);
   std::vector<StripAverages> averages() const;
   long samples() const { return samples_; }
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(sums_, samples_, blocks_);
+  }
   int count() const { return static_cast<int>(sums_.size()); }
   int dimension() const { return dimension_; }
 

@@ -43,6 +43,11 @@ class WallLoads {
   void close_interval(double duration);
 
   double elapsed() const { return elapsed_; }
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(total_, interval_, blocks_, elapsed_);
+  }
   std::vector<WallLoad> averages() const;
 
   static int flow_axis(int wall_axis) { return wall_axis == 0 ? 1 : 0; }
