@@ -13,6 +13,7 @@
 #include "grainflow/app/constitutive_command.hpp"
 #include "grainflow/app/dem_run.hpp"
 #include "grainflow/app/edmd_run.hpp"
+#include "grainflow/app/run_records.hpp"
 #include "grainflow/app/sweep_command.hpp"
 #include "grainflow/app/theory_command.hpp"
 #include "grainflow/core/case_loader.hpp"
@@ -187,7 +188,9 @@ int main(int argc, char** argv) {
     options.output_directory = output_dir.empty() ? (fs::path("runs") / fs::path(case_path).stem()).string() : output_dir;
     options.threads = threads;
     options.quiet = quiet;
-    return c.engine.kind == "edmd" ? app::run_edmd(c, options) : app::run_dem(c, options);
+    return app::run_with_records(c, options, std::vector<std::string>(argv, argv + argc), [&] {
+      return c.engine.kind == "edmd" ? app::run_edmd(c, options) : app::run_dem(c, options);
+    });
   } catch (const InputError& e) {
     std::cerr << "grainflow: invalid input: " << e.what() << "\n";
     return 2;
