@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages grainflow needs to build, test and plot; with `fuzz`, also clang
-# with libFuzzer and its OpenMP runtime (for `make fuzz`, not needed by `make test`).
+# with libFuzzer and its OpenMP runtime (for `make fuzz`, not needed by `make test`). python3-vtk9: the
+# integration test that reads the snapshots with VTK's own readers (tests/integration/test_vtu_reader.py).
 # Idempotent: installs only what is missing; runs apt-get update first on a fresh machine.
 # Usage: tools/install_deps.sh [fuzz]
 set -euo pipefail
@@ -10,7 +11,7 @@ packages=(
   libtomlplusplus-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfftw3-dev libhdf5-dev hdf5-tools
-  python3-matplotlib python3-numpy python3-h5py python3-pil
+  python3-matplotlib python3-numpy python3-h5py python3-pil python3-vtk9
 )
 if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev libomp-dev); fi
 

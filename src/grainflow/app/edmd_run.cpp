@@ -154,7 +154,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
               // Between advances every particle is current: a checkpoint here continues exactly.
               if ((interrupted = pending_interrupt()) != 0) break;
               const double next_row = std::min(end_time, row * c.output.interval);
-              const double next_shot = snapshots ? shot * c.output.snapshot_interval : kNeverTime;
+              const double next_shot = snapshots ? grid_time(shot, c.output.snapshot_interval, end_time) : kNeverTime;
               const double next_state = trajectory ? trajectory->next_time() : kNeverTime;
               const double t = std::min({next_row, next_shot, profiles.next_time(), next_state});
               e.advance_to(t);

@@ -16,6 +16,7 @@
 #include "grainflow/app/interrupt.hpp"
 #include "grainflow/app/run_support.hpp"
 #include "grainflow/io/checkpoint_file.hpp"
+#include "grainflow/app/run_records.hpp"
 #include "grainflow/app/sweep_command.hpp"
 #include "grainflow/app/theory_command.hpp"
 #include "grainflow/core/case_loader.hpp"
@@ -206,7 +207,9 @@ int main(int argc, char** argv) {
     app::catch_interrupts();
     options.threads = threads;
     options.quiet = quiet;
-    return c.engine.kind == "edmd" ? app::run_edmd(c, options) : app::run_dem(c, options);
+    return app::run_with_records(c, options, std::vector<std::string>(argv, argv + argc), [&] {
+      return c.engine.kind == "edmd" ? app::run_edmd(c, options) : app::run_dem(c, options);
+    });
   } catch (const InputError& e) {
     std::cerr << "grainflow: invalid input: " << e.what() << "\n";
     return 2;

@@ -17,6 +17,10 @@ void Progress::update(double time) {
   last_ = now;
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const double rate = time / elapsed;
+  if (duration_ >= 1e299) {  // an event-driven run to a collision count: no end time, so no ETA
+    std::fprintf(stderr, "\r  t = %.4g s   %.3g s/s   ", time, rate);
+    return;
+  }
   const double eta = rate > 0.0 ? (duration_ - time) / rate : 0.0;
   std::fprintf(stderr, "\r  t = %.4g / %.4g s   %.3g s/s   ETA %.0f s   ", time, duration_, rate, eta);
 }

@@ -41,6 +41,13 @@ class Schedule {
   long k_ = 0, next_ = 0;
 };
 
+// The k-th time of a grid `interval` apart, k * interval, pulled back onto `end` when rounding puts it
+// just past the end (3 * 0.1 > 0.3): an output due at the end of a run is taken, not lost.
+inline double grid_time(long k, double interval, double end) {
+  const double t = k * interval;
+  return t > end && t - end <= 1e-9 * interval ? end : t;
+}
+
 // The progress line on stderr (simulated time, rate, ETA), when stderr is a terminal.
 class Progress {
  public:

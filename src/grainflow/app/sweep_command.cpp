@@ -172,6 +172,8 @@ struct Sweep {
     io::write_atomically((fs::path(output_directory) / "sweep.csv").string(), [&](std::ostream& out) {
       out << "# grainflow sweep of " << options.case_path << ": " << points.size()
           << " runs; values as given to --vary, then each run's folder, exit status and summary.json fields\n";
+      out << "# units: the varied keys' as in the case file (docs/CASE_FILES.md), the summary fields' as in "
+             "summary.json (docs/OUTPUTS.md); status is the run's exit status\n";
       for (std::size_t c = 0; c < header.size(); ++c) out << (c ? "," : "") << csv_field(header[c]);
       out << "\n";
       for (std::size_t r = 0; r < points.size(); ++r) {

@@ -20,11 +20,13 @@ inline constexpr int face_axis(int face) { return face / 2; }
 inline constexpr bool face_is_high(int face) { return face % 2 == 1; }
 
 struct EngineConfig {
+  bool operator==(const EngineConfig&) const = default;  // the case writer's round-trip test
   std::string kind = "dem";
   int dimension = 3;
 };
 
 struct DomainConfig {
+  bool operator==(const DomainConfig&) const = default;  // the case writer's round-trip test
   Vec3 lo, hi;                       // m
   std::array<FaceKind, 6> faces{};   // per face
   bool periodic(int axis) const { return faces[axis * 2] == FaceKind::periodic; }
@@ -32,6 +34,7 @@ struct DomainConfig {
 };
 
 struct SpeciesConfig {
+  bool operator==(const SpeciesConfig&) const = default;  // the case writer's round-trip test
   std::string name;
   double diameter = 0.0;        // m
   double density = 0.0;         // kg/m^3
@@ -45,6 +48,7 @@ struct SpeciesConfig {
 };
 
 struct ParticlesConfig {
+  bool operator==(const ParticlesConfig&) const = default;  // the case writer's round-trip test
   std::string init = "random";  // random | lattice | file
   std::string file;             // with init = "file", resolved against the case's folder
   double initial_temperature = 0.0;  // m^2/s^2
@@ -60,6 +64,7 @@ struct ParticlesConfig {
 };
 
 struct ContactConfig {
+  bool operator==(const ContactConfig&) const = default;  // the case writer's round-trip test
   std::string model = "walton_braun";  // walton_braun | linear_dashpot
   // walton_braun
   double k1 = 0.0;           // N/m
@@ -75,6 +80,7 @@ struct ContactConfig {
 
 // Event-driven collisions (engine.kind = "edmd"), Campbell 1982 sections 2.11-2.12.
 struct CollisionConfig {
+  bool operator==(const CollisionConfig&) const = default;  // the case writer's round-trip test
   double restitution = 1.0;             // particle-particle normal restitution (constant law)
   std::string restitution_law = "constant";  // constant | campbell (e = (1 + exp(-3 dv / velocity_scale)) / 2)
   double velocity_scale = 0.0;          // m/s, campbell law; 0 = sqrt(g R) of the first species
@@ -91,6 +97,7 @@ struct CollisionConfig {
 // Pressure-controlled Couette walls (Campbell 1982 section 2.14.3, listing COL002): the walls at
 // ylo and yhi move apart or together so the measured normal stress approaches its target.
 struct ServoConfig {
+  bool operator==(const ServoConfig&) const = default;  // the case writer's round-trip test
   bool enabled = false;
   double normal_stress = 0.0;        // target, N/m in 2D (force per length), Pa in 3D
   bool keep_shear_rate = true;       // top wall speed follows the gap: U_T / H stays at its start value
@@ -100,6 +107,7 @@ struct ServoConfig {
 };
 
 struct WallConfig {
+  bool operator==(const WallConfig&) const = default;  // the case writer's round-trip test
   double restitution = -1.0;  // walton_braun; < 0: the particles' value (also for the bumps)
   double friction = -1.0;     // < 0: the particles' value (also for the bumps)
   double gamma_n = -1.0;      // linear_dashpot walls; < 0: the particles' value
@@ -112,6 +120,7 @@ struct WallConfig {
 };
 
 struct DriveConfig {
+  bool operator==(const DriveConfig&) const = default;  // the case writer's round-trip test
   bool enabled = false;
   std::string preset;  // "" | rotary (eq. 4-1-1: equal amplitudes, phases 0, 2pi/3, 4pi/3)
   int face = 2;        // ylo
@@ -123,6 +132,7 @@ struct DriveConfig {
 };
 
 struct RunConfig {
+  bool operator==(const RunConfig&) const = default;  // the case writer's round-trip test
   double duration = 0.0;       // s
   double time_step = 0.0;      // s; 0 = eq. (2-5-4) with collision_steps
   int collision_steps = 15;    // n of eq. (2-5-4)
@@ -133,6 +143,7 @@ struct RunConfig {
 };
 
 struct OutputConfig {
+  bool operator==(const OutputConfig&) const = default;  // the case writer's round-trip test
   double interval = 0.01;         // s between time-series rows
   double snapshot_interval = 0.0; // s between VTU snapshots (0 = none)
   double checkpoint_interval = 0.0; // s between checkpoint.h5 rewrites, and one at the end (0 = only on SIGINT/SIGTERM)
@@ -150,6 +161,7 @@ struct OutputConfig {
 // axis and one horizontal axis (Lan 1994 Chapter 5, Fig. 5.1), and the average convection speed of
 // Table 5.1; convection.csv and convection_phases.csv.
 struct FieldConfig {
+  bool operator==(const FieldConfig&) const = default;  // the case writer's round-trip test
   bool enabled = false;
   int axis = 2;             // the horizontal axis of the plane (default z, Lan's cell length)
   double cell = 0.0;        // m, cell length and height; 0 = reference species diameter
@@ -161,6 +173,7 @@ struct FieldConfig {
 // [tracers]: position, velocity and coordination number histories of chosen particles (Lan 1994
 // section 5.2, the large sphere; Figs. A5.12-A5.17); tracers.csv.
 struct TracersConfig {
+  bool operator==(const TracersConfig&) const = default;  // the case writer's round-trip test
   bool enabled = false;
   std::vector<std::uint32_t> particles;  // ids
   std::vector<std::string> species;      // every particle of these species
@@ -173,6 +186,7 @@ struct TracersConfig {
 // instantaneous states (positions, velocities, spins, walls) for Campbell's velocity and pair
 // distributions (Campbell 1982 section 3.4).
 struct TrajectoryConfig {
+  bool operator==(const TrajectoryConfig&) const = default;  // the case writer's round-trip test
   bool enabled = false;
   double start = -1.0;           // s; < 0: output.average_start
   double window = 0.0;           // s, t_s (dem); 0: (collision_steps / 2) time steps, Lan's half collision time
@@ -185,6 +199,7 @@ struct TrajectoryConfig {
 // [zone_series]: histories of each zone's instantaneous mean velocity and of the floor, sampled at
 // their own interval, for spectra and floor cross-correlations (Lan 1994 section 4.3); zone_series.h5.
 struct ZoneSeriesConfig {
+  bool operator==(const ZoneSeriesConfig&) const = default;  // the case writer's round-trip test
   bool enabled = false;
   double start = -1.0;      // s; < 0: output.average_start
   double interval = 0.0;    // s; 0: 1 / (20 f), f the drive frequency along the gravity axis
@@ -193,12 +208,14 @@ struct ZoneSeriesConfig {
 
 // One explicitly given particle (init = "file").
 struct InitialParticle {
+  bool operator==(const InitialParticle&) const = default;  // the case writer's round-trip test
   std::string species;
   Vec3 position, velocity, angular_velocity;  // m, m/s, rad/s
   double diameter = 0.0;                      // m; 0 = the species' diameter
 };
 
 struct CaseConfig {
+  bool operator==(const CaseConfig&) const = default;  // the case writer's round-trip test
   std::string path;  // the case file, as given
   std::vector<std::string> overrides;  // --set KEY=VALUE assignments applied on top of the file, in order
   EngineConfig engine;
