@@ -53,7 +53,7 @@ inline std::string stall_message(const Stall& s, const EdmdState& state) {
   else
     text += "involved particle " + std::to_string(s.i);
   if (s.collider_count > 0) {
-    text += "; " + std::to_string(s.collider_count) + " particle(s) collided without the clock advancing (";
+    text += "; " + std::to_string(s.collider_count) + " particle(s) collided within those events (";
     for (std::size_t k = 0; k < s.colliders.size(); ++k) text += (k ? ", " : "") + std::to_string(s.colliders[k]);
     if (s.collider_count > s.colliders.size()) text += ", ...";
     text += ")";
