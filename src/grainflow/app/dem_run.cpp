@@ -16,6 +16,7 @@
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
 #include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/fault_checks.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/hdf5_file.hpp"
 #include "grainflow/io/json_writer.hpp"
@@ -199,6 +200,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
 
   auto record = [&](auto& e) {
     auto& st = e.state();
+    dem::check_faults(st, derived);  // NaN or a particle through a wall: stop here (issue 7)
     TimeseriesRow row{};
     row.time = st.time;
     row.global = observe::sample_global(st.particles, axis);
@@ -225,11 +227,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     const bool monitored = !expanding && !settling;
     if (monitored) max_overlap_seen = std::max(max_overlap_seen, row.max_overlap_ratio);
     if (monitored && c.run.halt_overlap > 0.0 && row.max_overlap_ratio > c.run.halt_overlap) {
-      std::ostringstream message;
-      message << "maximum overlap / diameter " << row.max_overlap_ratio << " exceeded run.halt_overlap = "
-              << c.run.halt_overlap << " before t = " << st.time << " s; increase the stiffness (k1 = " << derived.k1
-              << " N/m) or lower the impact speeds";
-      throw RunError(message.str());
+      throw RunError(dem::overlap_halt_message(st, e.pairs(), derived, row.max_overlap_ratio, c.run.halt_overlap));
     }
   };
 
@@ -268,6 +266,9 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
           if (!streams_hdf5 && (interrupted != 0 || c.output.checkpoint_interval > 0.0)) checkpoint(e);
         },
         engine);
+  } catch (const dem::NonFiniteState& fault) {  // found by the engine, which does not know the case
+    errors.push_back(dem::with_cause(fault, derived));
+    exit_status = 1;
   } catch (const RunError& error) {
     errors.push_back(error.what());
     exit_status = 1;

@@ -20,6 +20,7 @@
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
+#include "grainflow/edmd/fault_checks.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/json_writer.hpp"
 #include "grainflow/io/vtu_writer.hpp"
@@ -85,6 +86,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
 
   auto record = [&](auto& e) {
     const auto& st = e.state();
+    edmd::check_faults(st);  // NaN or a particle through a wall: stop here (issue 7)
     auto& k = e.counters();
     Row row{};
     row.time = st.time;

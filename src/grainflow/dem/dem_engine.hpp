@@ -16,6 +16,7 @@
 #include "grainflow/dem/contact_kinematics.hpp"
 #include "grainflow/dem/contact_store.hpp"
 #include "grainflow/dem/dem_state.hpp"
+#include "grainflow/dem/fault_checks.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
 
 namespace grainflow::dem {
@@ -185,7 +186,7 @@ class DemEngine {
     int moved = 0;
 #pragma omp parallel for num_threads(threads_) schedule(static) reduction(| : moved)
     for (std::size_t i = 0; i < n; ++i)
-      if (norm2(p.position[i] - position_at_build_[i]) > limit) moved = 1;
+      if (!(norm2(p.position[i] - position_at_build_[i]) <= limit)) moved = 1;  // a NaN rebuilds, and is caught there
     return moved != 0;
   }
 
@@ -193,8 +194,7 @@ class DemEngine {
     ParticleStore& p = s_.particles;
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (!std::isfinite(p.position[i].x) || !std::isfinite(p.position[i].y) || !std::isfinite(p.position[i].z))
-        throw RunError("particle " + std::to_string(p.id[i]) + " has a non-finite position at t = " +
-                       std::to_string(s_.time) + " s; the time step is probably too large for the stiffness");
+        throw non_finite_state(s_, i);  // the run adds the likely cause (fault_checks.hpp)
       s_.box.wrap(p.position[i], p.image[i]);
     }
     grid_.bin(p.position);

@@ -26,6 +26,7 @@
 #include "grainflow/core/error.hpp"
 #include "grainflow/edmd/collision_observer.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
+#include "grainflow/edmd/fault_checks.hpp"
 #include "grainflow/edmd/event_queue.hpp"
 #include "grainflow/edmd/free_flight.hpp"
 
@@ -155,16 +156,28 @@ class EdmdEngine {
     const long long window = 100 * static_cast<long long>(s_.particles.size()) + 1000;
     if (++window_events_ < window) return;
     const double moved = s_.time - window_start_;
-    if (!(moved > 1e-9 * std::fabs(s_.time))) {
-      char text[160];
-      std::snprintf(text, sizeof text, "simulated time stopped advancing at t = %.17g s: the last %lld events moved it by %.3g s",
-                    s_.time, window, moved);
-      throw RunError(std::string(text) + " (particle " + std::to_string(s_.particles.id[i]) +
-                     " among them: inelastic collapse, a resting contact or ever faster bounces on a wall; set "
-                     "collision.contact_duration (TC model) and, under gravity, collision.rolling_speed)");
-    }
+    if (!(moved > 1e-9 * std::fabs(s_.time))) report_stall(i, window, moved);
     window_events_ = 0;
     window_start_ = s_.time;
+  }
+
+  // The stalled clock's message (fault_checks.hpp): the last event's particles and those that
+  // collided within the window, found by one pass over the last collision times.
+  [[noreturn, gnu::noinline, gnu::cold]] void report_stall(std::uint32_t i, long long window, double moved) const {
+    const ParticleStore& p = s_.particles;
+    Stall stall;
+    stall.time = s_.time;
+    stall.moved = moved;
+    stall.events = window;
+    stall.i = p.id[i];
+    if (event_[i].kind == Kind::pair) stall.j = p.id[event_[i].partner];
+    if (event_[i].kind == Kind::wall) stall.wall_face = s_.walls[event_[i].detail].face;
+    for (std::size_t k = 0; k < p.size(); ++k)
+      if (last_collision_[k] >= window_start_) {
+        ++stall.collider_count;
+        if (stall.colliders.size() < 8) stall.colliders.push_back(p.id[k]);
+      }
+    throw RunError(stall_message(stall, s_));
   }
 
   // Brings every particle to time t (no event may lie before t) and copies positions and velocities
