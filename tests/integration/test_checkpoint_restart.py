@@ -1,7 +1,8 @@
 """Checkpoints and restarts (issue 7): a run split in two by a checkpoint ends bitwise identical to
 the unsplit run, for a DEM vibrated bed and an event-driven chute; SIGINT and SIGTERM write a
 checkpoint and every output and exit with 130 / 143; a run killed with SIGKILL at any moment
-leaves readable outputs and a checkpoint it continues from exactly; bad checkpoints are refused
+leaves readable outputs and a checkpoint it continues from exactly, HDF5 streams included (the
+checkpoint's copies of trajectory.h5 and zone_series.h5 carry them across); bad checkpoints are refused
 before anything runs (exit 2).
 
 Bitwise means byte-identical output files: the CSV files print doubles with enough digits that
@@ -24,31 +25,48 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gftest import check, executable_from_argv, finish, read_csv, run  # noqa: E402
 
 import h5py  # noqa: E402  (Debian's python3-h5py)
+import numpy  # noqa: E402
 
-# Lan's bed, small and short: pouring by radius expansion, then the floor shaking with friction on.
+# Lan's bed, small and short: pouring by radius expansion, then the floor shaking with friction on,
+# with both HDF5 streams (trajectory.h5, zone_series.h5) and VTU snapshots.
 BED = "cases/demo/vibrated_bed.toml"
 BED_SETS = ["--set", "particles.expansion_time=0.02", "--set", "drive.start=0.05", "--set", "drive.ramp=0.05",
-            "--set", "output.snapshot_interval=0.05"]
+            "--set", "output.snapshot_interval=0.05", "--set", "trajectory.start=0.06", "--set", "trajectory.samples=200",
+            "--set", "zone_series.start=0.06", "--set", "zone_series.samples=100"]
+# Campbell's chute with its collision stresses, and a trajectory.h5 of instantaneous states.
 CHUTE = "cases/campbell1982/chute_30deg.toml"
-CHUTE_SETS = ["--set", "output.average_start=100"]
+CHUTE_SETS = ["--set", "output.average_start=100", "--set", "trajectory.samples=60", "--set", "trajectory.interval=2"]
+
+
+def h5_equal(a, b):
+    """The same datasets with exactly equal values and the same attributes (the files' bytes hold
+    HDF5's own bookkeeping, which depends on how the datasets grew)."""
+    with h5py.File(a, "r") as x, h5py.File(b, "r") as y:
+        if set(x.keys()) != set(y.keys()) or dict(x.attrs).keys() != dict(y.attrs).keys():
+            return False
+        same_attrs = all(str(x.attrs[k]) == str(y.attrs[k]) for k in x.attrs if k != "case")
+        return same_attrs and all(numpy.array_equal(x[k][()], y[k][()]) for k in x.keys())
 
 
 def outputs_equal(a, b, label):
-    """Every result file the unsplit run `a` wrote exists in `b` with the same bytes. Left out: the
-    records of how each process ran (summary.json and run_log.json hold wall-clock figures,
-    resolved_case.toml each process's own duration and checkpoint settings) and checkpoint.h5."""
+    """Every result file the unsplit run `a` wrote exists in `b` with the same bytes (HDF5 files:
+    the same datasets and attributes). Left out: the records of how each process ran (summary.json
+    and run_log.json hold wall-clock figures, resolved_case.toml each process's own duration and
+    checkpoint settings) and the checkpoint files."""
     names = []
     for root, _, files in os.walk(a):
         for name in files:
             rel = os.path.relpath(os.path.join(root, name), a)
-            if rel not in ("summary.json", "run_log.json", "resolved_case.toml", "checkpoint.h5"):
+            if rel not in ("summary.json", "run_log.json", "resolved_case.toml") and not rel.startswith("checkpoint"):
                 names.append(rel)
     check(len(names) >= 3, f"{label}: the unsplit run wrote only {names}")
+    check(any(n.endswith(".h5") for n in names), f"{label}: no HDF5 stream to compare in {names}")
     for rel in sorted(names):
         other = os.path.join(b, rel)
         if not check(os.path.exists(other), f"{label}: {rel} missing after the restart"):
             continue
-        check(filecmp.cmp(os.path.join(a, rel), other, shallow=False), f"{label}: {rel} differs from the unsplit run's")
+        same = h5_equal if rel.endswith(".h5") else lambda p, q: filecmp.cmp(p, q, shallow=False)
+        check(same(os.path.join(a, rel), other), f"{label}: {rel} differs from the unsplit run's")
 
 
 def split_run(exe, tmp, case, sets, full, half, label):

@@ -3,6 +3,9 @@
 // for cases that set the keys the bundled ones leave at their defaults.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+
 #include <algorithm>
 #include <filesystem>
 #include <string>
@@ -150,6 +153,15 @@ TEST(CaseWriter, EveryBundledCaseSurvivesTheRoundTrip) {
   for (const auto& entry : fs::recursive_directory_iterator(fs::path(GRAINFLOW_SOURCE_DIR) / "cases")) {
     if (entry.path().extension() != ".toml") continue;
     SCOPED_TRACE(entry.path().string());
+    // The LAMMPS benchmark cases read ../shared/bench/, which a bare clone (CI) does not have;
+    // test_lammps_chute skips for the same reason. Every other case must load.
+    const std::string text = [&] {
+      std::ifstream in(entry.path());
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    }();
+    if (text.find("shared/bench/") != std::string::npos &&
+        !fs::exists(fs::path(GRAINFLOW_SOURCE_DIR) / ".." / "shared" / "bench"))
+      continue;
     expect_round_trip(load_case(entry.path().string()));
     ++cases;
   }

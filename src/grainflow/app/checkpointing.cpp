@@ -1,6 +1,13 @@
 #include "grainflow/app/checkpointing.hpp"
 
+#include <filesystem>
+
 namespace grainflow::app {
+
+std::string checkpoint_folder(const std::string& checkpoint) {
+  const std::filesystem::path folder = std::filesystem::path(checkpoint).parent_path();
+  return folder.empty() ? "." : folder.string();
+}
 
 io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles) {
   io::Checkpoint checkpoint = io::read_checkpoint(path);

@@ -17,6 +17,9 @@ namespace grainflow::app {
 // Reads `path` and checks it belongs to a case of this engine, dimension and particle count.
 io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles);
 
+// The folder holding `checkpoint` (and the copies of the HDF5 streams written with it).
+std::string checkpoint_folder(const std::string& checkpoint);
+
 // Writes dir/checkpoint.h5 from `transfer(archive)`, which must be the same function a restart
 // reads with.
 template <class Transfer>

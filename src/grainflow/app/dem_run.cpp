@@ -122,13 +122,6 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   dem::DemEngineVariant engine = dem::make_engine(c, dem::build_dem_state(c), options.threads);
   const long long particle_count =
       std::visit([](auto& e) { return static_cast<long long>(e.state().particles.size()); }, engine);
-  // Checkpoints cover the engine and every accumulator but not the HDF5 files written as the run
-  // goes; refused up front rather than continued wrongly.
-  const bool streams_hdf5 = c.trajectory.enabled || c.zone_series.enabled;
-  if (streams_hdf5 && (!options.restart.empty() || c.output.checkpoint_interval > 0.0))
-    throw InputError(c.path, c.trajectory.enabled ? "trajectory" : "zone_series",
-                     "checkpoints and --restart do not cover trajectory.h5 / zone_series.h5 yet (they are written "
-                     "as the run goes); turn them off or set output.checkpoint_interval = 0");
   std::optional<io::Checkpoint> restart;
   if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count);
 
@@ -190,9 +183,15 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     if (snapshots) ar(*snapshots);
     if (field) ar(*field);
     if (tracers) ar(*tracers);
+    if (trajectory) ar(*trajectory);
+    if (zone_series) ar(*zone_series);
     ar.tag("end of dem run");
   };
+  // The HDF5 streams are copied beside the checkpoint first: a checkpoint never counts more samples
+  // than its copies hold.
   auto checkpoint = [&](auto& e) {
+    if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
+    if (zone_series) zone_series->copy_stream(dir + "/checkpoint_zone_series.h5");
     write_run_checkpoint(dir, c, e.state().particles, e.state().time, e.state().step,
                          [&](io::StateArchive& ar) { transfer(ar, e); });
   };
@@ -236,6 +235,9 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         [&](auto& e) {
           if (restart) {
             restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
+            const std::string beside = checkpoint_folder(options.restart);
+            if (trajectory) trajectory->resume_stream(beside + "/checkpoint_trajectory.h5");
+            if (zone_series) zone_series->resume_stream(beside + "/checkpoint_zone_series.h5");
             first_step = e.state().step;
           } else {
             record(e);
@@ -263,7 +265,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
             if (checkpoint_schedule.due(step) && step < total_steps) checkpoint(e);
           }
           // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
-          if (!streams_hdf5 && (interrupted != 0 || c.output.checkpoint_interval > 0.0)) checkpoint(e);
+          if (interrupted != 0 || c.output.checkpoint_interval > 0.0) checkpoint(e);
         },
         engine);
   } catch (const dem::NonFiniteState& fault) {  // found by the engine, which does not know the case
@@ -276,8 +278,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   if (interrupted != 0) {
     const double t = std::visit([](auto& e) { return e.state().time; }, engine);
     errors.push_back(std::string("interrupted by ") + signal_name(interrupted) + " at t = " + std::to_string(t) + " s; " +
-                     (streams_hdf5 ? std::string("no checkpoint (trajectory.h5 / zone_series.h5 are not covered)")
-                                   : "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5"));
+                     "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5");
     exit_status = 128 + interrupted;
   }
   progress.finish();

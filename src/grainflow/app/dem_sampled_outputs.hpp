@@ -49,6 +49,14 @@ struct TrajectoryOutput {
 
   TrajectoryOutput(const CaseConfig& c, const dem::DerivedQuantities& d, const ParticleStore& p, const std::string& dir);
   void finish(std::vector<std::string>& warnings);
+
+  // Checkpoints: the sampler's state here, the file as it is in a copy beside the checkpoint.
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(*sampler);
+  }
+  void copy_stream(const std::string& path) { file.copy_to(path); }
+  void resume_stream(const std::string& path) { io::resume_streams(path, {&time, &velocity, &position}, sampler->taken()); }
 };
 
 // zone_series.h5: each zone's instantaneous mean velocity and the floor's motion at a fixed interval
@@ -78,6 +86,15 @@ struct ZoneSeriesOutput {
     ++taken;
   }
   void finish(std::vector<std::string>& warnings);
+
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(taken, next);
+  }
+  void copy_stream(const std::string& path) { file.copy_to(path); }
+  void resume_stream(const std::string& path) {
+    io::resume_streams(path, {&time, &zone_velocity, &floor_position, &floor_velocity}, static_cast<std::size_t>(taken));
+  }
 };
 
 // convection.csv / convection_phases.csv ([field], Lan 1994 Chapter 5).

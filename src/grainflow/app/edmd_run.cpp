@@ -47,11 +47,6 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   namespace fs = std::filesystem;
   const int dim = c.engine.dimension;
   edmd::EdmdState initial = edmd::build_edmd_state(c);
-  // Checkpoints cover the engine and every accumulator but not trajectory.h5, written as the run goes.
-  if (c.trajectory.enabled && (!options.restart.empty() || c.output.checkpoint_interval > 0.0))
-    throw InputError(c.path, "trajectory",
-                     "checkpoints and --restart do not cover trajectory.h5 yet (it is written as the run goes); turn "
-                     "it off or set output.checkpoint_interval = 0");
   std::optional<io::Checkpoint> restart;
   if (!options.restart.empty())
     restart = read_restart(options.restart, c, static_cast<long long>(initial.particles.size()));
@@ -129,9 +124,13 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
     ar(row, shot, checkpoints, profiles);
     if (collision_outputs) ar(*collision_outputs);
     if (snapshots) ar(*snapshots);
+    if (trajectory) ar(*trajectory);
     ar.tag("end of edmd run");
   };
+  // trajectory.h5 is copied beside the checkpoint first: a checkpoint never counts more samples
+  // than its copy holds.
   auto checkpoint = [&](auto& e) {
+    if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
     write_run_checkpoint(dir, c, e.state().particles, e.state().time, e.counters().events,
                          [&](io::StateArchive& ar) { transfer(ar, e); });
   };
@@ -144,6 +143,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
           if (restart) {
             restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
             if (collision_outputs) collision_outputs->resume(e);
+            if (trajectory) trajectory->resume_stream(checkpoint_folder(options.restart) + "/checkpoint_trajectory.h5");
             first_events = e.counters().events;
             first_collisions = e.counters().collisions;
           } else {
@@ -181,7 +181,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
               }
             }
             // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
-            if (!c.trajectory.enabled && (interrupted != 0 || checkpoint_interval > 0.0)) checkpoint(e);
+            if (interrupted != 0 || checkpoint_interval > 0.0) checkpoint(e);
           } catch (const RunError&) {
             e.synchronize(e.state().time);  // the outputs show every particle at one instant
             throw;
@@ -195,8 +195,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   if (interrupted != 0) {
     const double t = std::visit([](auto& e) { return e.state().time; }, engine);
     errors.push_back(std::string("interrupted by ") + signal_name(interrupted) + " at t = " + std::to_string(t) + "; " +
-                     (c.trajectory.enabled ? std::string("no checkpoint (trajectory.h5 is not covered)")
-                                           : "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5"));
+                     "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5");
     exit_status = 128 + interrupted;
   }
   progress.finish();

@@ -27,6 +27,20 @@ class EdmdTrajectoryOutput {
   // Commits the file with the samples taken; warns when the run ended before all of them.
   void finish(std::vector<std::string>& warnings);
 
+  // Checkpoints: the count and the time grid here (a restart that runs longer keeps the grid the
+  // run began with), the file as it is in a copy beside the checkpoint.
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(taken_, start_, interval_);
+  }
+  void copy_stream(const std::string& path) { file_.copy_to(path); }
+  void resume_stream(const std::string& path) {
+    io::resume_streams(path,
+                   {&time_, &position_, &velocity_, &angular_velocity_, &wall_lo_at_, &wall_hi_at_, &strip_lo_, &strip_hi_,
+                    &width_},
+                   static_cast<std::size_t>(taken_));
+  }
+
  private:
   io::H5Writer file_;
   EdmdStrips strips_;

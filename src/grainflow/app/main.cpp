@@ -188,7 +188,14 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("run") && !restart_path.empty()) {
       // The checkpoint's own --set assignments first, so that a restart needs only the case and the
       // file; assignments given now (a longer run.duration, say) come after and win.
-      std::vector<std::string> all = app::split_overrides(io::read_checkpoint_header(restart_path).case_overrides);
+      const io::CheckpointHeader header = io::read_checkpoint_header(restart_path);
+      const CaseConfig as_given = load_case(case_path, overrides);
+      if (header.engine != as_given.engine.kind || header.dimension != as_given.engine.dimension)
+        throw InputError(restart_path, "",
+                         "this checkpoint cannot continue case '" + case_path + "': it is from a " +
+                             std::to_string(header.dimension) + "D '" + header.engine + "' run, the case is " +
+                             std::to_string(as_given.engine.dimension) + "D '" + as_given.engine.kind + "'");
+      std::vector<std::string> all = app::split_overrides(header.case_overrides);
       all.insert(all.end(), overrides.begin(), overrides.end());
       overrides = all;
     }

@@ -53,6 +53,17 @@ void H5Handle::reset() {
 
 // ---------------------------------------------------------------------------------------------
 
+void GrowingDataset::append_from(const H5Reader& source, std::size_t rows) {
+  if (rows == 0) return;
+  const H5Array old = source.read(name_);
+  if (old.shape.empty() || old.shape[0] < rows)
+    throw RunError(source.path() + ": dataset '" + name_ + "' holds " +
+                   std::to_string(old.shape.empty() ? 0 : old.shape[0]) + " samples, the checkpoint counts " +
+                   std::to_string(rows));
+  const std::size_t row = old.values.size() / old.shape[0];
+  for (std::size_t k = 0; k < rows; ++k) append(old.values.data() + k * row);
+}
+
 void GrowingDataset::append(const double* row) {
   std::vector<hsize_t> extent(shape_.begin(), shape_.end());
   extent[0] = samples_ + 1;
@@ -184,6 +195,15 @@ void H5Writer::attribute(const std::string& where, const std::string& key, const
   scalar_attribute(file_.get(), path_, where, key, type.get(), padded.data());
 }
 
+void H5Writer::copy_to(const std::string& path) {
+  check_status(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), path_, "flush");
+  const std::string temporary = path + ".tmp";
+  std::error_code error;
+  std::filesystem::copy_file(temporary_, temporary, std::filesystem::copy_options::overwrite_existing, error);
+  if (!error) std::filesystem::rename(temporary, path, error);
+  if (error) fail(path, "copy the stream from '" + temporary_ + "': " + error.message());
+}
+
 void H5Writer::commit() {
   check_status(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), path_, "flush it");
   file_.reset();
@@ -254,6 +274,17 @@ std::string H5Reader::text(const std::string& where, const std::string& key) con
   check_status(H5Aread(a.get(), type.get(), value.data()), path_, "read attribute '" + key + "'");
   while (!value.empty() && value.back() == '\0') value.pop_back();
   return value;
+}
+
+void resume_streams(const std::string& path, std::initializer_list<GrowingDataset*> datasets, std::size_t rows) {
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError(path, "", "missing: the checkpoint's copy of a stream written as the run goes (keep it beside checkpoint.h5)");
+  try {
+    const H5Reader source(path);
+    for (GrowingDataset* d : datasets) d->append_from(source, rows);
+  } catch (const RunError& e) {
+    throw InputError(path, "", std::string("cannot continue the stream from it: ") + e.what());
+  }
 }
 
 }  // namespace grainflow::io

@@ -6,10 +6,13 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
 namespace grainflow::io {
+
+class H5Reader;
 
 // An owned HDF5 identifier, closed with the matching H5*close function.
 class H5Handle {
@@ -44,6 +47,9 @@ class GrowingDataset {
   // `row` holds one sample: the product of `shape` (the dimensions after the first).
   void append(const double* row);
   std::size_t samples() const { return samples_; }
+  // A restart: appends the first `rows` samples of the same-named dataset in `source` (the copy
+  // made with the checkpoint); throws RunError if it holds fewer.
+  void append_from(const H5Reader& source, std::size_t rows);
 
  private:
   friend class H5Writer;
@@ -76,12 +82,19 @@ class H5Writer {
   void attribute(const std::string& where, const std::string& key, const std::string& value);
   // Flushes, closes and renames the temporary file to its real name.
   void commit();
+  // Flushes and copies the file as it is now to `path` (via a temporary and a rename): the stream
+  // as of a checkpoint, for a restart to continue from.
+  void copy_to(const std::string& path);
 
  private:
   std::string path_, temporary_;
   H5Handle file_;
   bool committed_ = false;
 };
+
+// A restart: appends the first `rows` samples of each dataset from `path`, the stream's copy made
+// with the checkpoint; throws InputError naming the file when it is missing, unreadable or short.
+void resume_streams(const std::string& path, std::initializer_list<GrowingDataset*> datasets, std::size_t rows);
 
 // Reading back (grainflow analyze, tests).
 struct H5Array {

@@ -30,6 +30,11 @@ class TrajectorySampler {
   long taken() const { return taken_; }
   const std::vector<std::uint32_t>& ids() const { return ids_; }
 
+  template <class Archive>  // checkpoints: the open window and the count; the rest is the case's
+  void serialize(Archive& ar) {
+    ar(taken_, velocity_sum_, position_sum_, filled_);
+  }
+
  private:
   void add(const ParticleStore& p, const PeriodicBox& box, double weight);
   void finish_window();
