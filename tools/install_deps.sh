@@ -11,6 +11,7 @@ packages=(
   libtomlplusplus-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfftw3-dev libhdf5-dev hdf5-tools
+  libopenmpi-dev openmpi-bin
   python3-matplotlib python3-numpy python3-h5py python3-pil python3-vtk9
 )
 if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev libomp-dev); fi

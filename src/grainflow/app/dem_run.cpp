@@ -2,6 +2,8 @@
 #include "grainflow/app/run_support.hpp"
 #include "grainflow/app/checkpointing.hpp"
 #include "grainflow/app/interrupt.hpp"
+#include "grainflow/app/dem_parallel_view.hpp"
+#include "grainflow/parallel/communicator.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -119,7 +121,23 @@ void put(io::JsonObject& summary, const std::string& key, const MeanWithError& m
 int run_dem(const CaseConfig& c, const RunOptions& options) {
   namespace fs = std::filesystem;
   const dem::DerivedQuantities derived = dem::derive(c);
-  dem::DemEngineVariant engine = dem::make_engine(c, dem::build_dem_state(c), options.threads);
+  // Under mpirun with several ranks each rank integrates a slab (dem/domain_exchange.hpp); rank 0
+  // sees the whole and writes every file.
+  const parallel::Communicator& comm = parallel::Communicator::world();
+  const bool ranks = comm.size() > 1;
+  if (ranks) refuse_beyond_parallel_dem(c, !options.restart.empty());
+  dem::DemState initial = dem::build_dem_state(c);
+  std::optional<dem::EngineDomain> domain;
+  if (ranks) domain = dem::EngineDomain{&comm, dem_slabs(initial, comm.size())};
+  dem::DemEngineVariant engine = dem::make_engine(c, std::move(initial), options.threads, domain ? &*domain : nullptr);
+  const bool writes = comm.root();
+  // What the observers and writers see: the engine's particles, or all ranks' gathered on rank 0.
+  dem::DemState gathered;
+  auto view = [&](auto& e) -> const dem::DemState& {
+    if (!ranks) return e.state();
+    gather_view(e.state(), comm, gathered);
+    return gathered;
+  };
   const long long particle_count =
       std::visit([](auto& e) { return static_cast<long long>(e.state().particles.size()); }, engine);
   std::optional<io::Checkpoint> restart;
@@ -128,7 +146,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   fs::create_directories(options.output_directory);
   const std::string dir = options.output_directory;
   std::optional<io::PvdSeries> snapshots;
-  if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
+  if (c.output.snapshot_interval > 0.0 && writes) snapshots.emplace(dir + "/snapshots");
 
   const int axis = derived.gravity_axis;
   double zone_thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : derived.reference_diameter;
@@ -169,7 +187,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   Schedule checkpoint_schedule(c.output.checkpoint_interval, dt);
   std::vector<TimeseriesRow> rows;
   std::vector<std::string> errors, warnings;
-  Progress progress(!options.quiet && ::isatty(2), c.run.duration);
+  Progress progress(!options.quiet && ::isatty(2) && writes, c.run.duration);
   const auto wall_start = std::chrono::steady_clock::now();
   auto last_flush = wall_start;
   double max_overlap_seen = 0.0;
@@ -198,20 +216,21 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   int interrupted = 0;
 
   auto record = [&](auto& e) {
-    auto& st = e.state();
-    dem::check_faults(st, derived);  // NaN or a particle through a wall: stop here (issue 7)
+    dem::check_faults(e.state(), derived);  // NaN or a particle through a wall: stop here (issue 7)
+    const auto& st = view(e);
+    const dem::ContactStatistics stats = ranks ? global_statistics(e.statistics(), comm) : e.statistics();
     TimeseriesRow row{};
     row.time = st.time;
     row.global = observe::sample_global(st.particles, axis);
     const FloorMotion floor = floor_motion(st, c);
     row.floor_position = floor.position;
     row.floor_velocity = floor.velocity;
-    row.max_overlap_ratio = e.statistics().max_overlap_ratio;
-    row.contacts = e.statistics().contacts;
-    row.wall_contacts = e.statistics().wall_contacts;
-    row.rebuilds = e.statistics().rebuilds;
-    row.collisions = e.statistics().collisions;
-    row.wall_collisions = e.statistics().wall_collisions;
+    row.max_overlap_ratio = stats.max_overlap_ratio;
+    row.contacts = stats.contacts;
+    row.wall_contacts = stats.wall_contacts;
+    row.rebuilds = stats.rebuilds;
+    row.collisions = stats.collisions;
+    row.wall_collisions = stats.wall_collisions;
     if (floor_below)
       row.bed = observe::measure_bed_surface(st.particles, axis, floor_position(st, c, axis), area,
                                              derived.reference_diameter, bed_thresholds);
@@ -226,7 +245,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     const bool monitored = !expanding && !settling;
     if (monitored) max_overlap_seen = std::max(max_overlap_seen, row.max_overlap_ratio);
     if (monitored && c.run.halt_overlap > 0.0 && row.max_overlap_ratio > c.run.halt_overlap) {
-      throw RunError(dem::overlap_halt_message(st, e.pairs(), derived, row.max_overlap_ratio, c.run.halt_overlap));
+      throw RunError(dem::overlap_halt_message(e.state(), e.pairs(), derived, row.max_overlap_ratio, c.run.halt_overlap));
     }
   };
 
@@ -241,7 +260,10 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
             first_step = e.state().step;
           } else {
             record(e);
-            if (snapshots) snapshots->add(e.state().particles, e.state().time);
+            if (c.output.snapshot_interval > 0.0) {
+              const auto& v = view(e);
+              if (snapshots) snapshots->add(v.particles, v.time);
+            }
           }
           for (long step = e.state().step + 1; step <= total_steps; ++step) {
             if ((interrupted = pending_interrupt()) != 0) break;
@@ -250,18 +272,21 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
             if (zone_series) zone_series->observe(e.state(), profile, c);
             if (field) field->observe(e.state(), c);
             if (tracers) tracers->observe(e, c);
-            if (profile_schedule.due(step) && step >= average_from) profile.sample(e.state().particles);
+            if (profile_schedule.due(step) && step >= average_from) profile.sample(view(e).particles);
             if (output_schedule.due(step)) {
               record(e);
               progress.update(e.state().time);
               const auto now = std::chrono::steady_clock::now();
-              if (now - last_flush > std::chrono::seconds(30)) {
+              if (now - last_flush > std::chrono::seconds(30) && writes) {
                 write_timeseries(dir + "/timeseries.csv", rows);
                 if (tracers) tracers->write(dir + "/tracers.csv");
                 last_flush = now;
               }
             }
-            if (snapshot_schedule.due(step) && snapshots) snapshots->add(e.state().particles, e.state().time);
+            if (snapshot_schedule.due(step)) {
+              const auto& v = view(e);
+              if (snapshots) snapshots->add(v.particles, v.time);
+            }
             if (checkpoint_schedule.due(step) && step < total_steps) checkpoint(e);
           }
           // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
@@ -274,6 +299,12 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   } catch (const RunError& error) {
     errors.push_back(error.what());
     exit_status = 1;
+  }
+  if (ranks && exit_status != 0) {
+    // A fault seen on one rank cannot reach the others, which wait in the next exchange: stop all.
+    std::cerr << "grainflow: rank " << comm.rank() << ": run failed: " << errors.back()
+              << " (on several ranks the outputs are not written after a failure)\n";
+    comm.abort(1);
   }
   if (interrupted != 0) {
     const double t = std::visit([](auto& e) { return e.state().time; }, engine);
@@ -288,7 +319,10 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
 
   std::visit(
       [&](auto& e) {
-        const auto& st = e.state();
+        const auto& st = view(e);
+        const long long migrations = e.domain() ? comm.sum(e.domain()->migrated()) : 0;
+        const long long ghosts = e.domain() ? comm.sum(e.domain()->ghosts()) : 0;
+        if (!writes) return;  // rank 0 writes the run's files
         long moving = 0;
         for (std::size_t i = 0; i < st.particles.size(); ++i) moving += st.particles.motion[i] == Motion::free;
         const auto global = observe::sample_global(st.particles, axis);
@@ -319,6 +353,12 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         summary.integer("steps", st.step);
         summary.number("time_step", st.time_step);
         summary.integer("threads", options.threads);
+        summary.integer("mpi_ranks", comm.size());
+        if (e.domain()) {  // the decomposition, and how much crossed it
+          summary.integer("mpi_slab_axis", e.domain()->slabs().axis);
+          summary.integer("mpi_migrations", migrations);
+          summary.integer("mpi_ghosts", ghosts);
+        }
         summary.number("particle_steps_per_second",
                        wall_seconds > 0 ? moving * double(st.step - first_step) / wall_seconds : 0.0);
         if (restart) summary.string("restarted_from", options.restart);

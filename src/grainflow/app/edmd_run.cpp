@@ -17,6 +17,7 @@
 #include "grainflow/app/run_support.hpp"
 #include "grainflow/app/checkpointing.hpp"
 #include "grainflow/app/interrupt.hpp"
+#include "grainflow/parallel/communicator.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
@@ -46,6 +47,10 @@ constexpr double kNeverTime = std::numeric_limits<double>::infinity();
 int run_edmd(const CaseConfig& c, const RunOptions& options) {
   namespace fs = std::filesystem;
   const int dim = c.engine.dimension;
+  if (parallel::Communicator::world().size() > 1)
+    throw InputError(c.path, "engine.kind",
+                     "the event-driven engine runs on one rank; start it without mpirun (docs/SCALING.md says how it "
+                     "would be parallelised)");
   edmd::EdmdState initial = edmd::build_edmd_state(c);
   std::optional<io::Checkpoint> restart;
   if (!options.restart.empty())

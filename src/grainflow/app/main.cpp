@@ -16,6 +16,7 @@
 #include "grainflow/app/interrupt.hpp"
 #include "grainflow/app/run_support.hpp"
 #include "grainflow/io/checkpoint_file.hpp"
+#include "grainflow/parallel/communicator.hpp"
 #include "grainflow/app/run_records.hpp"
 #include "grainflow/app/sweep_command.hpp"
 #include "grainflow/app/theory_command.hpp"
@@ -65,6 +66,7 @@ int plot(const std::string& directory) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  parallel::Communicator::start(argc, argv);  // MPI only when started by mpirun
   CLI::App app{"grainflow: particle simulation of granular flows (DEM and event-driven)"};
   app.set_version_flag("--version", std::string("grainflow ") + kVersion);
   app.require_subcommand(1);

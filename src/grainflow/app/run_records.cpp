@@ -1,4 +1,5 @@
 #include "grainflow/app/run_records.hpp"
+#include "grainflow/parallel/communicator.hpp"
 
 #include <chrono>
 #include <ctime>
@@ -52,6 +53,7 @@ void write_run_log(const std::string& dir, const CaseConfig& c, const RunOptions
 
 int run_with_records(const CaseConfig& c, const RunOptions& options, const std::vector<std::string>& command_line,
                      const std::function<int()>& run) {
+  if (!parallel::Communicator::world().root()) return run();  // MPI: rank 0 keeps the records
   const std::string& dir = options.output_directory;
   const bool existed = std::filesystem::exists(dir);
   std::filesystem::create_directories(dir);

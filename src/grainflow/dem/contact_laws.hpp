@@ -15,7 +15,8 @@ namespace grainflow::dem {
 
 using DemEngineVariant = std::variant<DemEngine<WaltonBraun>, DemEngine<LinearDashpot>>;
 
-// Builds the engine for the case's contact model from an initial state.
-DemEngineVariant make_engine(const CaseConfig& c, DemState state, int threads);
+// Builds the engine for the case's contact model from an initial state; with `domain`, as one of
+// several MPI ranks (`state` is then the whole initial state, the same on every rank).
+DemEngineVariant make_engine(const CaseConfig& c, DemState state, int threads, const EngineDomain* domain = nullptr);
 
 }  // namespace grainflow::dem

@@ -2,6 +2,7 @@
 // across neighbor-list rebuilds and particle re-orderings by particle id.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -16,13 +17,9 @@ struct ContactStore {
   std::vector<std::vector<State>> wall_state;            // [wall][particle]
   std::vector<std::vector<std::uint8_t>> wall_touching;  // [wall][particle]
 
-  // Snapshot of the list the pair states refer to, by id, for the next transfer.
-  std::vector<std::uint32_t> ids_at_build;       // index -> id when the list was built
-  std::vector<std::uint32_t> index_at_build;     // id -> index when the list was built
-
   template <class Archive>
   void serialize(Archive& ar) {
-    ar(pair_state, pair_touching, wall_state, wall_touching, ids_at_build, index_at_build);
+    ar(pair_state, pair_touching, wall_state, wall_touching);
   }
 
   void resize_walls(std::size_t walls, std::size_t particles) {
@@ -43,61 +40,55 @@ struct ContactStore {
     }
   }
 
-  // The states of the pairs touching now, by the list's particle index and the partner's id: all a
-  // rebuild must carry (most listed pairs do not touch).
-  struct Touching {
-    std::vector<std::uint32_t> offsets;     // size n + 1, over the indices of the list they came from
-    std::vector<std::uint32_t> partner_id;
-    std::vector<State> state;
+  // A touching pair's state by the two particles' ids, `a` the one whose list holds the pair: all a
+  // rebuild must carry (most listed pairs do not touch). Ids, not indices, so that the particles
+  // may be re-sorted, or leave and arrive (MPI ranks), between one list and the next.
+  struct KeptPair {
+    std::uint32_t a, b;
+    State state;
   };
 
-  // Takes the touching pairs' states out of `old_list` (built when ids_at_build was recorded) and
+  // Takes the touching pairs' states out of `old_list`, whose particles have ids `ids` now, and
   // frees the per-pair arrays, so that the next list is built without the old one's states beside it.
-  Touching take_touching(const NeighborPairs& old_list) {
-    Touching kept;
+  std::vector<KeptPair> take_touching(const NeighborPairs& old_list, const std::vector<std::uint32_t>& ids) {
+    std::vector<KeptPair> kept;
     const std::size_t n = old_list.offsets.empty() ? 0 : old_list.offsets.size() - 1;
-    kept.offsets.assign(n + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::uint32_t k = old_list.offsets[i]; k < old_list.offsets[i + 1]; ++k) {
-        if (!pair_touching[k]) continue;
-        kept.partner_id.push_back(ids_at_build[old_list.partner[k]]);
-        kept.state.push_back(pair_state[k]);
-      }
-      kept.offsets[i + 1] = static_cast<std::uint32_t>(kept.state.size());
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::uint32_t k = old_list.offsets[i]; k < old_list.offsets[i + 1]; ++k)
+        if (pair_touching[k]) kept.push_back({ids[i], ids[old_list.partner[k]], pair_state[k]});
     std::vector<State>().swap(pair_state);
     std::vector<std::uint8_t>().swap(pair_touching);
     return kept;
   }
 
-  // Puts the kept states onto `new_list`, whose particle ids are `ids`.
-  void restore(const Touching& kept, const NeighborPairs& new_list, const std::vector<std::uint32_t>& ids) {
+  // Puts the kept states onto `new_list`, whose particles have ids `ids`. Where `kept` names a pair
+  // twice, the later entry wins (a migrating particle's states, appended, replace a copy's).
+  void restore(const std::vector<KeptPair>& kept, const NeighborPairs& new_list, const std::vector<std::uint32_t>& ids) {
     pair_state.assign(new_list.pair_count(), State{});
     pair_touching.assign(new_list.pair_count(), 0);
-    for (std::size_t i = 0; i + 1 < new_list.offsets.size() && !kept.state.empty(); ++i) {
-      const std::uint32_t old_i = index_at_build[ids[i]];
-      const std::uint32_t old_begin = kept.offsets[old_i], old_end = kept.offsets[old_i + 1];
-      if (old_begin == old_end) continue;
+    if (kept.empty()) return;
+    // Grouped by the id of the list's particle (a counting sort keeps their order within a group).
+    std::uint32_t largest = 0;
+    for (const auto& k : kept) largest = std::max(largest, k.a);
+    std::vector<std::uint32_t> start(static_cast<std::size_t>(largest) + 2, 0);
+    for (const auto& k : kept) ++start[k.a + 1];
+    for (std::size_t a = 0; a + 1 < start.size(); ++a) start[a + 1] += start[a];
+    std::vector<std::uint32_t> order(kept.size()), fill(start.begin(), start.end() - 1);
+    for (std::uint32_t q = 0; q < kept.size(); ++q) order[fill[kept[q].a]++] = q;
+    for (std::size_t i = 0; i + 1 < new_list.offsets.size(); ++i) {
+      if (ids[i] > largest) continue;
+      const std::uint32_t begin = start[ids[i]], end = start[ids[i] + 1];
+      if (begin == end) continue;
       for (std::uint32_t k = new_list.offsets[i]; k < new_list.offsets[i + 1]; ++k) {
         const std::uint32_t partner_id = ids[new_list.partner[k]];
-        for (std::uint32_t q = old_begin; q < old_end; ++q) {
-          if (kept.partner_id[q] == partner_id) {
-            pair_state[k] = kept.state[q];
-            pair_touching[k] = 1;
-            break;
-          }
+        for (std::uint32_t q = begin; q < end; ++q) {
+          const KeptPair& entry = kept[order[q]];
+          if (entry.b != partner_id) continue;
+          pair_state[k] = entry.state;  // no break: a later entry for the pair wins
+          pair_touching[k] = 1;
         }
       }
     }
-    record_ids(ids);
-  }
-
-  void record_ids(const std::vector<std::uint32_t>& ids) {
-    ids_at_build = ids;
-    std::uint32_t max_id = 0;
-    for (std::uint32_t id : ids) max_id = std::max(max_id, id);
-    index_at_build.assign(static_cast<std::size_t>(max_id) + 1, 0);
-    for (std::size_t i = 0; i < ids.size(); ++i) index_at_build[ids[i]] = static_cast<std::uint32_t>(i);
   }
 };
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/contact_kinematics.hpp"
 #include "grainflow/dem/contact_store.hpp"
+#include "grainflow/dem/domain_exchange.hpp"
 #include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/fault_checks.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
@@ -37,9 +39,13 @@ class DemEngine {
   using Params = typename Law::Params;
   using State = typename Law::State;
 
-  DemEngine(DemState state, Params pair_params, std::vector<Params> wall_params, int threads, int sort_every)
+  // With `domain` (an MPI run of more than one rank), `state` is the whole initial state, the same
+  // on every rank; the engine keeps its slab's particles and copies of the others' near it.
+  DemEngine(DemState state, Params pair_params, std::vector<Params> wall_params, int threads, int sort_every,
+            const EngineDomain* domain = nullptr)
       : s_(std::move(state)), pair_params_(pair_params), wall_params_(std::move(wall_params)),
         threads_(std::max(1, threads)), sort_every_(sort_every) {
+    s_.particles.ghost.assign(s_.particles.size(), 0);
     contacts_.resize_walls(s_.walls.size(), s_.particles.size());
     bump_wall_.fill(-1);
     bump_params_.fill(pair_params_);
@@ -51,6 +57,10 @@ class DemEngine {
     double max_radius = 0.0;
     for (double r : s_.particles.target_radius) max_radius = std::max(max_radius, r);
     grid_.setup(s_.box, 2.0 * max_radius + s_.skin, s_.particles.size());
+    if (domain != nullptr && domain->comm->size() > 1) {
+      domain_ = std::make_unique<DomainExchange<State>>(*domain->comm, domain->slabs);
+      domain_->keep_owned(s_.particles, contacts_);
+    }
     for (auto& wall : s_.walls) wall.move_to(s_.time);
     rebuild(true);
     // The initial evaluation must not advance contact histories (no time has passed): dt = 0.
@@ -62,6 +72,8 @@ class DemEngine {
   const ContactStore<State>& contacts() const { return contacts_; }
   const NeighborPairs& pairs() const { return pairs_; }
   ContactStatistics& statistics() { return stats_; }
+  // The MPI side of the engine, or null on one rank.
+  const DomainExchange<State>* domain() const { return domain_.get(); }
 
   // Everything that changes as the run goes (checkpoints): the rest follows from the case, so a
   // restart builds the engine from its case first and then reads this over it.
@@ -84,12 +96,13 @@ class DemEngine {
     half_kick();
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (std::size_t i = 0; i < n; ++i)
-      if (p.motion[i] == Motion::free) p.position[i] += dt * p.velocity[i];
+      if (p.motion[i] == Motion::free && !p.ghost[i]) p.position[i] += dt * p.velocity[i];
     s_.time = (s_.step + 1) * dt;  // no accumulated round-off in the clock
     ++s_.step;
     move_walls();
     grow_radii();
-    if (needs_rebuild()) rebuild(false);
+    if (domain_) domain_->refresh(p);  // ghosts take their owners' new positions and velocities
+    if (domain_ ? domain_->any(needs_rebuild()) : needs_rebuild()) rebuild(false);
     compute_forces(dt);
     half_kick();
   }
@@ -136,7 +149,7 @@ class DemEngine {
     const std::size_t n = p.size();
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (std::size_t i = 0; i < n; ++i) {
-      if (p.motion[i] != Motion::free) continue;
+      if (p.motion[i] != Motion::free || p.ghost[i]) continue;
       p.velocity[i] += (half * p.inv_mass[i]) * p.force[i];
       p.angular_velocity[i] += (half * p.inv_inertia[i]) * p.torque[i];
     }
@@ -197,6 +210,14 @@ class DemEngine {
         throw non_finite_state(s_, i);  // the run adds the likely cause (fault_checks.hpp)
       s_.box.wrap(p.position[i], p.image[i]);
     }
+    // The touching pairs' states, by particle id, are set aside and the old list freed before the new
+    // one is built, so that the peak memory holds one list, not two. Until here the particles are
+    // in the old list's order.
+    std::vector<typename ContactStore<State>::KeptPair> kept;
+    if (!first) kept = contacts_.take_touching(pairs_, p.id);
+    const std::size_t expected_pairs = pairs_.pair_count();
+    pairs_ = NeighborPairs{};
+    if (domain_) domain_->redistribute(p, contacts_, kept);  // MPI: particles change ranks, ghosts renewed
     grid_.bin(p.position);
     const bool sort_now = sort_every_ > 0 && (first || ++rebuilds_since_sort_ >= sort_every_);
     if (sort_now) {
@@ -206,20 +227,9 @@ class DemEngine {
       contacts_.permute_walls(order);
       grid_.bin(p.position);
     }
-    // The touching pairs' states are set aside and the old list freed before the new one is built,
-    // so that the peak memory holds one list, not two.
-    typename ContactStore<State>::Touching kept;
-    if (!first) kept = contacts_.take_touching(pairs_);
-    const std::size_t expected_pairs = pairs_.pair_count();
-    pairs_ = NeighborPairs{};
+    if (domain_) domain_->index(p);
     grid_.build_pairs(p, s_.box, s_.skin, threads_, pairs_, expected_pairs);
-    if (first) {
-      contacts_.pair_state.assign(pairs_.pair_count(), State{});
-      contacts_.pair_touching.assign(pairs_.pair_count(), 0);
-      contacts_.record_ids(p.id);
-    } else {
-      contacts_.restore(kept, pairs_, p.id);
-    }
+    contacts_.restore(kept, pairs_, p.id);
     position_at_build_ = p.position;
     ++stats_.rebuilds;
   }
@@ -255,6 +265,7 @@ class DemEngine {
       for (std::size_t i = begin; i < end; ++i) {
         const Vec3 xi = p.position[i];
         const double ri = p.radius[i];
+        const long counted = !p.ghost[i];  // a pair is counted on the rank owning its list's particle
         for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k) {
           const std::uint32_t j = pairs_.partner[k];
           const Vec3 d = xi - (p.position[j] + shifts[pairs_.shift[k]]);
@@ -268,7 +279,7 @@ class DemEngine {
           if (!contacts_.pair_touching[k]) {
             contacts_.pair_touching[k] = 1;
             contacts_.pair_state[k] = State{};
-            ++begun;
+            begun += counted;
           }
           const double r = std::sqrt(r2);
           ContactKinematics c;
@@ -295,7 +306,7 @@ class DemEngine {
             if (touched) touched->push_back(j);
           }
           max_ratio = std::max(max_ratio, c.overlap / (2.0 * std::min(ri, rj)));
-          ++contacts;
+          contacts += counted;
         }
       }
     }
@@ -329,7 +340,7 @@ class DemEngine {
       normal[wall.axis] = wall.inward;
 #pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : wall_contacts, begun) reduction(max : max_ratio)
       for (std::size_t i = 0; i < n; ++i) {
-        if (p.motion[i] != Motion::free) continue;
+        if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
         const double ri = p.radius[i];
         const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
         if (gap >= ri) {
@@ -373,6 +384,7 @@ class DemEngine {
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;  // per thread: shares for others' particles (kept zero)
   std::vector<std::vector<std::uint32_t>> thread_touched_;       // per thread: where those shares are
   std::array<int, 6> bump_wall_{};
+  std::unique_ptr<DomainExchange<State>> domain_;  // MPI ranks > 1 only
   std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps  // wall carrying each face's bumps, -1 when they stand still
   ContactStatistics stats_;
 };

@@ -29,17 +29,32 @@ struct ParticleStore {
   std::vector<Motion> motion;
   std::vector<std::int8_t> wall;             // face index that carries a bump, -1 otherwise
   std::vector<std::array<std::int32_t, 3>> image;  // periodic box crossings, for unwrapped positions
+  std::vector<std::uint8_t> ghost;           // 1: a copy of another MPI rank's particle (not integrated here)
 
   std::size_t size() const { return position.size(); }
   void resize(std::size_t n);
-  // Applies `order` (new index -> old index) to every array.
+  // Applies `order` (new index -> old index) to every array; a shorter `order` keeps only those.
   void permute(const std::vector<std::uint32_t>& order);
+
+  // One particle with every field, as bytes can carry it between MPI ranks.
+  struct Record {
+    Vec3 position, velocity, angular_velocity, force, torque;
+    double radius, target_radius, inv_mass, inv_inertia, mass;
+    std::array<std::int32_t, 3> image;
+    std::int32_t species;
+    std::uint32_t id;
+    Motion motion;
+    std::int8_t wall;
+    std::uint8_t ghost;
+  };
+  Record record(std::size_t i) const;
+  void push_back(const Record& r);
   bool moves(std::size_t i) const { return motion[i] == Motion::free; }
 
   template <class Archive>  // checkpoints (io/state_archive.hpp)
   void serialize(Archive& ar) {
     ar(position, velocity, angular_velocity, force, torque, radius, target_radius, inv_mass, inv_inertia, mass, species,
-       id, motion, wall, image);
+       id, motion, wall, image, ghost);
   }
 };
 

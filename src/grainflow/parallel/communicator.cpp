@@ -1,0 +1,158 @@
+#include "grainflow/parallel/communicator.hpp"
+
+#include <cstdlib>
+#include <stdexcept>
+
+#ifdef GRAINFLOW_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace grainflow::parallel {
+namespace {
+
+Communicator& the_world() {
+  static Communicator world;
+  return world;
+}
+
+#ifdef GRAINFLOW_HAVE_MPI
+bool launched_by_mpirun() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(name) != nullptr) return true;
+  return false;
+}
+
+void finalize() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (!finalized) MPI_Finalize();
+}
+
+bool active() {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  return initialized != 0;
+}
+#endif
+
+}  // namespace
+
+bool mpi_built() {
+#ifdef GRAINFLOW_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+Communicator& Communicator::world() { return the_world(); }
+
+void Communicator::start([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv) {
+#ifdef GRAINFLOW_HAVE_MPI
+  if (!launched_by_mpirun() || active()) return;
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);  // OpenMP threads stay inside a rank
+  std::atexit(finalize);
+  Communicator& w = the_world();
+  MPI_Comm_rank(MPI_COMM_WORLD, &w.rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &w.size_);
+#endif
+}
+
+bool Communicator::any(bool local) const {
+#ifdef GRAINFLOW_HAVE_MPI
+  if (size_ > 1) {
+    int in = local ? 1 : 0, out = 0;
+    MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+    return out != 0;
+  }
+#endif
+  return local;
+}
+
+double Communicator::max(double local) const {
+#ifdef GRAINFLOW_HAVE_MPI
+  if (size_ > 1) {
+    double out = 0.0;
+    MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+    return out;
+  }
+#endif
+  return local;
+}
+
+long long Communicator::sum(long long local) const {
+#ifdef GRAINFLOW_HAVE_MPI
+  if (size_ > 1) {
+    long long out = 0;
+    MPI_Allreduce(&local, &out, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+    return out;
+  }
+#endif
+  return local;
+}
+
+double Communicator::sum(double local) const {
+#ifdef GRAINFLOW_HAVE_MPI
+  if (size_ > 1) {
+    double out = 0.0;
+    MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    return out;
+  }
+#endif
+  return local;
+}
+
+std::vector<std::vector<std::uint8_t>> Communicator::exchange(const std::vector<std::vector<std::uint8_t>>& outgoing) const {
+  if (static_cast<int>(outgoing.size()) != size_) throw std::logic_error("Communicator::exchange: one buffer per rank");
+  std::vector<std::vector<std::uint8_t>> incoming(size_);
+#ifdef GRAINFLOW_HAVE_MPI
+  if (size_ > 1) {
+    std::vector<int> send_counts(size_), receive_counts(size_), send_offsets(size_), receive_offsets(size_);
+    std::vector<std::uint8_t> send;
+    for (int r = 0; r < size_; ++r) {
+      send_counts[r] = static_cast<int>(outgoing[r].size());
+      send_offsets[r] = static_cast<int>(send.size());
+      send.insert(send.end(), outgoing[r].begin(), outgoing[r].end());
+    }
+    MPI_Alltoall(send_counts.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    int total = 0;
+    for (int r = 0; r < size_; ++r) receive_offsets[r] = total, total += receive_counts[r];
+    std::vector<std::uint8_t> receive(static_cast<std::size_t>(total));
+    MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, receive.data(), receive_counts.data(),
+                  receive_offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
+    for (int r = 0; r < size_; ++r)
+      incoming[r].assign(receive.begin() + receive_offsets[r], receive.begin() + receive_offsets[r] + receive_counts[r]);
+    return incoming;
+  }
+#endif
+  incoming[0] = outgoing[0];
+  return incoming;
+}
+
+std::vector<std::vector<std::uint8_t>> Communicator::gather(const std::vector<std::uint8_t>& mine) const {
+#ifdef GRAINFLOW_HAVE_MPI
+  if (size_ > 1) {
+    int count = static_cast<int>(mine.size());
+    std::vector<int> counts(root() ? size_ : 0), offsets(root() ? size_ : 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    int total = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) offsets[r] = total, total += counts[r];
+    std::vector<std::uint8_t> all(static_cast<std::size_t>(total));
+    MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+    std::vector<std::vector<std::uint8_t>> out;
+    for (std::size_t r = 0; r < counts.size(); ++r) out.emplace_back(all.begin() + offsets[r], all.begin() + offsets[r] + counts[r]);
+    return out;
+  }
+#endif
+  return {mine};
+}
+
+void Communicator::abort(int status) const {
+#ifdef GRAINFLOW_HAVE_MPI
+  if (size_ > 1) MPI_Abort(MPI_COMM_WORLD, status);
+#endif
+  std::exit(status);
+}
+
+}  // namespace grainflow::parallel

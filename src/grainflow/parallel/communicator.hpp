@@ -1,0 +1,41 @@
+// The ranks of an MPI run, and the few collective operations grainflow needs, behind one small
+// class: without MPI (a build without it, or a process not started by mpirun) it is one rank and
+// every operation is the identity, so the engines and drivers carry no #ifdefs.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace grainflow::parallel {
+
+class Communicator {
+ public:
+  // The world of this process: MPI_COMM_WORLD once start() ran under mpirun, else one rank.
+  static Communicator& world();
+  // Initialises MPI when the process was started by mpirun (or another launcher that sets the
+  // usual environment); a plain run never touches MPI. Finalised at exit.
+  static void start(int& argc, char**& argv);
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool root() const { return rank_ == 0; }
+
+  bool any(bool local) const;                  // logical OR over the ranks
+  double max(double local) const;
+  long long sum(long long local) const;
+  double sum(double local) const;
+  // Each rank sends outgoing[r] to rank r; returns what each rank sent to this one.
+  std::vector<std::vector<std::uint8_t>> exchange(const std::vector<std::vector<std::uint8_t>>& outgoing) const;
+  // Rank 0 receives every rank's bytes in rank order; the others receive nothing.
+  std::vector<std::vector<std::uint8_t>> gather(const std::vector<std::uint8_t>& mine) const;
+  // Stops every rank (a failure on one rank that the others cannot see).
+  [[noreturn]] void abort(int status) const;
+
+ private:
+  int rank_ = 0, size_ = 1;
+};
+
+// Whether this build has MPI (`mpirun -np N grainflow ...` runs N ranks).
+bool mpi_built();
+
+}  // namespace grainflow::parallel
