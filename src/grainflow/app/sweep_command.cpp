@@ -24,6 +24,7 @@
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/flat_json_reader.hpp"
 #include "grainflow/io/json_writer.hpp"
+#include "grainflow/parallel/communicator.hpp"
 
 extern char** environ;
 
@@ -49,6 +50,7 @@ int usable_cores() {
 
 int resolve_jobs(const SweepOptions& options, int threads) {
   if (options.jobs > 0) return options.jobs;
+  if (parallel::Communicator::world().size() > 1) return 1;  // mpirun placed one rank per slot
   if (const char* env = std::getenv("GRAINFLOW_JOBS"); env && *env) {
     char* end = nullptr;
     errno = 0;
@@ -219,7 +221,7 @@ struct Sweep {
     posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, 1, 2);
     pid_t pid = -1;
-    const int spawn_error = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+    const int spawn_error = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), child_environment().data());
     posix_spawn_file_actions_destroy(&actions);
     if (spawn_error != 0) {
       results[r].status = 127;
@@ -234,10 +236,70 @@ struct Sweep {
     const RunResult& result = results[r];
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.3g s", result.seconds);
-    std::cerr << "grainflow sweep: [" << finished << "/" << points.size() << "] " << points[r].name << ": "
+    const auto& comm = parallel::Communicator::world();
+    std::size_t total = 0;
+    for (std::size_t q = 0; q < points.size(); ++q) total += mine(q);
+    std::cerr << "grainflow sweep: " << (comm.size() > 1 ? "rank " + std::to_string(comm.rank()) + " " : std::string())
+              << "[" << finished << "/" << total << "] " << points[r].name << ": "
               << (result.status == 0 ? "ok" : "FAILED (" + describe_status(result.status) + ")") << ", " << seconds;
     if (result.status != 0 && !result.reason.empty()) std::cerr << ": " << result.reason;
     std::cerr << "\n";
+  }
+
+  // The children are plain one-rank runs, also when the sweep itself runs under mpirun.
+  static std::vector<char*>& child_environment() {
+    static std::vector<char*> env = [] {
+      std::vector<char*> e;
+      for (char** v = environ; *v != nullptr; ++v) e.push_back(*v);
+      static char serial[] = "GRAINFLOW_SERIAL=1";
+      e.push_back(serial);
+      e.push_back(nullptr);
+      return e;
+    }();
+    return env;
+  }
+
+  // Under mpirun each rank runs every size-th point from its rank; the results meet on rank 0.
+  bool mine(std::size_t r) const {
+    const auto& comm = parallel::Communicator::world();
+    return static_cast<int>(r % static_cast<std::size_t>(comm.size())) == comm.rank();
+  }
+
+  void gather_results() {
+    const auto& comm = parallel::Communicator::world();
+    if (comm.size() == 1) return;
+    std::vector<std::uint8_t> mine_bytes;
+    auto put = [&](const void* p, std::size_t n) {
+      mine_bytes.insert(mine_bytes.end(), static_cast<const std::uint8_t*>(p), static_cast<const std::uint8_t*>(p) + n);
+    };
+    for (std::size_t r = 0; r < points.size(); ++r) {
+      if (!mine(r)) continue;
+      const RunResult& result = results[r];
+      const std::uint64_t index = r, length = result.reason.size();
+      put(&index, sizeof index);
+      put(&result.status, sizeof result.status);
+      put(&result.seconds, sizeof result.seconds);
+      put(&length, sizeof length);
+      put(result.reason.data(), length);
+    }
+    const auto all = comm.gather(mine_bytes);
+    for (const auto& from : all) {
+      std::size_t at = 0;
+      auto get = [&](void* p, std::size_t n) {
+        std::memcpy(p, from.data() + at, n);
+        at += n;
+      };
+      while (at < from.size()) {
+        std::uint64_t index = 0, length = 0;
+        get(&index, sizeof index);
+        RunResult& result = results[index];
+        get(&result.status, sizeof result.status);
+        get(&result.seconds, sizeof result.seconds);
+        get(&length, sizeof length);
+        result.reason.assign(reinterpret_cast<const char*>(from.data() + at), length);
+        at += length;
+      }
+    }
   }
 
   void run_all() {
@@ -248,6 +310,7 @@ struct Sweep {
     while (next < points.size() || !running.empty()) {
       while (next < points.size() && running.size() < static_cast<std::size_t>(jobs)) {
         const std::size_t r = next++;
+        if (!mine(r)) continue;
         const auto started = clock::now();
         const pid_t pid = start(r, exe);
         if (pid < 0) {
@@ -323,13 +386,17 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   if (fs::exists(sweep.output_directory, error) && !fs::is_directory(sweep.output_directory, error))
     throw InputError(sweep.output_directory, "", "the output folder exists and is not a folder");
 
+  const auto& comm = parallel::Communicator::world();
   fs::create_directories(sweep.output_directory);
   sweep.results.assign(sweep.points.size(), RunResult{});
-  sweep.write_json();  // the plan, so an interrupted sweep still says what it was
-  if (!options.quiet)
+  if (comm.root()) sweep.write_json();  // the plan, so an interrupted sweep still says what it was
+  if (!options.quiet && comm.root())
     std::cerr << "grainflow sweep: " << sweep.points.size() << " runs of " << options.case_path << " into "
-              << sweep.output_directory << ", " << sweep.jobs << " at a time\n";
+              << sweep.output_directory << ", " << sweep.jobs << " at a time"
+              << (comm.size() > 1 ? " on each of " + std::to_string(comm.size()) + " MPI ranks" : std::string()) << "\n";
   sweep.run_all();
+  sweep.gather_results();
+  if (!comm.root()) return 0;  // rank 0 writes the tables and reports
   sweep.write_json();
   sweep.write_csv();
 

@@ -17,6 +17,7 @@ Communicator& the_world() {
 
 #ifdef GRAINFLOW_HAVE_MPI
 bool launched_by_mpirun() {
+  if (std::getenv("GRAINFLOW_SERIAL") != nullptr) return false;  // a sweep's child: one rank of its own
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
     if (std::getenv(name) != nullptr) return true;
   return false;
