@@ -12,6 +12,8 @@ case files and outputs of a serial run.
 - A longer run on 1 and 2 ranks gives statistically identical profiles: each zone's solids fraction
   and granular temperature agree within 4 combined standard errors (block averages; chaos makes the
   two runs independent samples after ~0.05 s).
+- The same holds with walls at the ends of the slab axis (the end ranks own the wall contacts),
+  and with two OpenMP threads inside each of two ranks.
 - What several ranks cannot do yet is refused before anything runs (exit 2).
 
 Runs on this 2-core machine with `mpirun --oversubscribe`; as root Open MPI needs its two
@@ -46,8 +48,8 @@ def mpi_environment():
     return env
 
 
-def run_ranks(exe, ranks, out, args, timeout=300):
-    command = [exe, "run", BED, "-o", out, "--quiet", *args]
+def run_ranks(exe, ranks, out, args, timeout=300, threads=1):
+    command = [exe, "run", BED, "-o", out, "--quiet", "--threads", str(threads), *args]
     if ranks > 1:
         command = ["mpirun", "--oversubscribe", "-np", str(ranks), *command]
     result = subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=mpi_environment())
@@ -94,6 +96,19 @@ def main():
             for a, b in zip(rows_serial, rows):
                 for key in ("contacts", "wall_contacts", "collisions", "wall_collisions", "neighbor_rebuilds"):
                     check(a[key] == b[key], f"{ranks} ranks, t = {a['time']}: {key} {b[key]}, one rank {a[key]}")
+
+        # Walls across the slab axis, and threads inside the ranks: the same state as one rank.
+        walled = SHORT + ["--set", 'domain.boundary.x="wall"']
+        for ranks, threads, args, label in ((1, 1, walled, "walls_1"), (2, 1, walled, "walls_2"), (2, 2, SHORT, "threads")):
+            out[label] = os.path.join(tmp, label)
+            status, err = run_ranks(exe, ranks, out[label], args, threads=threads)
+            check(status == 0, f"{label}: exit {status}: {err[-2000:]}")
+        for reference, label in (("walls_1", "walls_2"), (1, "threads")):
+            a = states(os.path.join(out[reference], "final_state.csv"))
+            b = states(os.path.join(out[label], "final_state.csv"))
+            if check(sorted(a) == sorted(b), f"{label}: other particles than one rank's"):
+                dx = largest_difference(a, b, ("x", "y", "z"))
+                check(dx <= 1e-9 * DIAMETER, f"{label}: positions differ by {dx / DIAMETER:.3g} d from one rank's")
 
         # Long run: statistically identical profiles on 1 and 2 ranks.
         profiles = {}

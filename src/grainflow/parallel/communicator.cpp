@@ -60,49 +60,28 @@ void Communicator::start([[maybe_unused]] int& argc, [[maybe_unused]] char**& ar
 #endif
 }
 
-bool Communicator::any(bool local) const {
 #ifdef GRAINFLOW_HAVE_MPI
-  if (size_ > 1) {
-    int in = local ? 1 : 0, out = 0;
-    MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
-    return out != 0;
-  }
-#endif
-  return local;
+namespace {
+// One value combined over all ranks (itself on one rank).
+template <class T>
+T all_reduce(int ranks, T local, MPI_Datatype type, MPI_Op op) {
+  if (ranks == 1) return local;
+  T out{};
+  MPI_Allreduce(&local, &out, 1, type, op, MPI_COMM_WORLD);
+  return out;
 }
+}  // namespace
 
-double Communicator::max(double local) const {
-#ifdef GRAINFLOW_HAVE_MPI
-  if (size_ > 1) {
-    double out = 0.0;
-    MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-    return out;
-  }
+bool Communicator::any(bool local) const { return all_reduce(size_, local ? 1 : 0, MPI_INT, MPI_LOR) != 0; }
+double Communicator::max(double local) const { return all_reduce(size_, local, MPI_DOUBLE, MPI_MAX); }
+long long Communicator::sum(long long local) const { return all_reduce(size_, local, MPI_LONG_LONG, MPI_SUM); }
+double Communicator::sum(double local) const { return all_reduce(size_, local, MPI_DOUBLE, MPI_SUM); }
+#else
+bool Communicator::any(bool local) const { return local; }
+double Communicator::max(double local) const { return local; }
+long long Communicator::sum(long long local) const { return local; }
+double Communicator::sum(double local) const { return local; }
 #endif
-  return local;
-}
-
-long long Communicator::sum(long long local) const {
-#ifdef GRAINFLOW_HAVE_MPI
-  if (size_ > 1) {
-    long long out = 0;
-    MPI_Allreduce(&local, &out, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
-    return out;
-  }
-#endif
-  return local;
-}
-
-double Communicator::sum(double local) const {
-#ifdef GRAINFLOW_HAVE_MPI
-  if (size_ > 1) {
-    double out = 0.0;
-    MPI_Allreduce(&local, &out, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-    return out;
-  }
-#endif
-  return local;
-}
 
 std::vector<std::vector<std::uint8_t>> Communicator::exchange(const std::vector<std::vector<std::uint8_t>>& outgoing) const {
   if (static_cast<int>(outgoing.size()) != size_) throw std::logic_error("Communicator::exchange: one buffer per rank");
