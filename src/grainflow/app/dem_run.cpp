@@ -159,6 +159,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   if (c.drive.enabled && c.drive.face == axis * 2)
     zones_lo -= zone_thickness * std::ceil(c.drive.amplitude[axis] / zone_thickness - 1e-9);
   observe::ZoneProfile profile(axis, zones_lo, c.domain.hi[axis], zone_thickness, area);
+  if (ranks) profile.set_reduce([&comm](double* values, std::size_t count) { comm.sum_in_place(values, count); });
 
   const double dt = derived.time_step;
   const long total_steps = static_cast<long>(std::llround(c.run.duration / dt));
@@ -272,7 +273,8 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
             if (zone_series) zone_series->observe(e.state(), profile, c);
             if (field) field->observe(e.state(), c);
             if (tracers) tracers->observe(e, c);
-            if (profile_schedule.due(step) && step >= average_from) profile.sample(view(e).particles);
+            // Each rank samples its own particles; the zone sums are added over the ranks.
+            if (profile_schedule.due(step) && step >= average_from) profile.sample(e.state().particles);
             if (output_schedule.due(step)) {
               record(e);
               progress.update(e.state().time);

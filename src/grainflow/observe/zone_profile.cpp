@@ -10,6 +10,7 @@ ZoneProfile::ZoneProfile(int axis, double lo, double hi, double thickness, doubl
   const int zones = std::max(1, static_cast<int>(std::ceil((hi - lo) / thickness - 1e-9)));
   sums_.resize(zones);
   scratch_.resize(zones);
+  fluctuations_.resize(zones);
   for (int z = 0; z < zones; ++z) {
     const double top = std::min(hi, lo + (z + 1) * thickness);
     zone_volume_.push_back((top - (lo + z * thickness)) * cross_section_area);
@@ -36,7 +37,7 @@ void ZoneProfile::for_each_overlap(const ParticleStore& p, std::size_t i, Visit&
 void ZoneProfile::fill_masses(const ParticleStore& p) {
   std::fill(scratch_.begin(), scratch_.end(), Sums{});
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.motion[i] != Motion::free) continue;
+    if (!p.counted(i)) continue;
     for_each_overlap(p, i, [&](int z, double part, double fraction) {
       const double m = p.mass[i] * fraction;
       scratch_[z].solid_volume += part;
@@ -44,6 +45,12 @@ void ZoneProfile::fill_masses(const ParticleStore& p) {
       scratch_[z].momentum += m * p.velocity[i];
     });
   }
+  reduce(scratch_);
+}
+
+void ZoneProfile::reduce(std::vector<Sums>& sums) const {
+  static_assert(sizeof(Sums) == 11 * sizeof(double), "Sums must be plain doubles to be summed over MPI ranks");
+  if (reduce_) reduce_(reinterpret_cast<double*>(sums.data()), sums.size() * 11);
 }
 
 std::vector<Vec3> ZoneProfile::instantaneous_mean_velocity(const ParticleStore& p) {
@@ -61,17 +68,24 @@ std::vector<double> ZoneProfile::zone_centres() const {
 }
 
 // Pass 2 of a sample: fluctuations about the instantaneous zone mean and second moments, into scratch_.
+// (Summed apart from pass 1's sums, so that reducing them over ranks does not count those twice.)
 void ZoneProfile::fill_fluctuations(const ParticleStore& p) {
+  std::fill(fluctuations_.begin(), fluctuations_.end(), Sums{});
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.motion[i] != Motion::free) continue;
+    if (!p.counted(i)) continue;
     for_each_overlap(p, i, [&](int z, double, double fraction) {
       const double m = p.mass[i] * fraction;
       const Vec3 u = scratch_[z].momentum * (1.0 / scratch_[z].mass);
       const Vec3 v = p.velocity[i];
       const Vec3 dv = v - u;
-      scratch_[z].fluctuation_lan += Vec3{m * dv.x * dv.x, m * dv.y * dv.y, m * dv.z * dv.z};
-      scratch_[z].second_moment += Vec3{m * v.x * v.x, m * v.y * v.y, m * v.z * v.z};
+      fluctuations_[z].fluctuation_lan += Vec3{m * dv.x * dv.x, m * dv.y * dv.y, m * dv.z * dv.z};
+      fluctuations_[z].second_moment += Vec3{m * v.x * v.x, m * v.y * v.y, m * v.z * v.z};
     });
+  }
+  reduce(fluctuations_);
+  for (std::size_t z = 0; z < scratch_.size(); ++z) {
+    scratch_[z].fluctuation_lan += fluctuations_[z].fluctuation_lan;
+    scratch_[z].second_moment += fluctuations_[z].second_moment;
   }
 }
 

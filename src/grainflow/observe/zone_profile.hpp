@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "grainflow/observe/block_sums.hpp"
@@ -51,6 +52,11 @@ class ZoneProfile {
   long samples() const { return samples_; }
   int axis() const { return axis_; }
 
+  // MPI: each rank samples its own particles and `reduce` sums each pass's zone sums over the
+  // ranks (in place), so every rank holds the whole box's profile without gathering particles.
+  using Reduce = std::function<void(double* values, std::size_t count)>;
+  void set_reduce(Reduce reduce) { reduce_ = std::move(reduce); }
+
   template <class Archive>
   void serialize(Archive& ar) {
     ar(sums_, samples_, blocks_);
@@ -72,7 +78,9 @@ class ZoneProfile {
   void add_errors(std::vector<ZoneAverages>& out) const;
 
   std::vector<Sums> sums_;
-  std::vector<Sums> scratch_;
+  std::vector<Sums> scratch_, fluctuations_;
+  Reduce reduce_;
+  void reduce(std::vector<Sums>& sums) const;
   long samples_ = 0;
   BlockSums<Sums> blocks_;  // for the error bars
 };

@@ -76,11 +76,15 @@ bool Communicator::any(bool local) const { return all_reduce(size_, local ? 1 : 
 double Communicator::max(double local) const { return all_reduce(size_, local, MPI_DOUBLE, MPI_MAX); }
 long long Communicator::sum(long long local) const { return all_reduce(size_, local, MPI_LONG_LONG, MPI_SUM); }
 double Communicator::sum(double local) const { return all_reduce(size_, local, MPI_DOUBLE, MPI_SUM); }
+void Communicator::sum_in_place(double* values, std::size_t count) const {
+  if (size_ > 1) MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+}
 #else
 bool Communicator::any(bool local) const { return local; }
 double Communicator::max(double local) const { return local; }
 long long Communicator::sum(long long local) const { return local; }
 double Communicator::sum(double local) const { return local; }
+void Communicator::sum_in_place(double*, std::size_t) const {}
 #endif
 
 std::vector<std::vector<std::uint8_t>> Communicator::exchange(const std::vector<std::vector<std::uint8_t>>& outgoing) const {

@@ -24,6 +24,7 @@ class Communicator {
   double max(double local) const;
   long long sum(long long local) const;
   double sum(double local) const;
+  void sum_in_place(double* values, std::size_t count) const;  // element by element, on every rank
   // Each rank sends outgoing[r] to rank r; returns what each rank sent to this one.
   std::vector<std::vector<std::uint8_t>> exchange(const std::vector<std::vector<std::uint8_t>>& outgoing) const;
   // Rank 0 receives every rank's bytes in rank order; the others receive nothing.

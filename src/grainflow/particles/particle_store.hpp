@@ -50,6 +50,8 @@ struct ParticleStore {
   Record record(std::size_t i) const;
   void push_back(const Record& r);
   bool moves(std::size_t i) const { return motion[i] == Motion::free; }
+  // Free and this rank's own (not a copy of another MPI rank's): what the observers count.
+  bool counted(std::size_t i) const { return motion[i] == Motion::free && (ghost.empty() || !ghost[i]); }
 
   template <class Archive>  // checkpoints (io/state_archive.hpp)
   void serialize(Archive& ar) {
