@@ -14,6 +14,7 @@ case files and outputs of a serial run.
   two runs independent samples after ~0.05 s).
 - The same holds with walls at the ends of the slab axis (the end ranks own the wall contacts),
   and with two OpenMP threads inside each of two ranks.
+- A fault all ranks see at an output time stops them together, with the outputs written.
 - What several ranks cannot do yet is refused before anything runs (exit 2).
 
 Runs on this 2-core machine with `mpirun --oversubscribe`; as root Open MPI needs its two
@@ -129,6 +130,18 @@ def main():
                       f"zone {a['zone']}: {value} {a[value]} (1 rank) and {b[value]} (2 ranks) differ by "
                       f"{gap / math.hypot(ea, eb):.1f} combined standard errors")
         check(compared >= 10, f"only {compared} zone values had error bars to compare")
+
+        # A fault every rank sees at an output time (here the overlap bound, the maximum over the
+        # ranks) stops them all there, and rank 0 writes the outputs as a serial run does.
+        halted = os.path.join(tmp, "halted")
+        status, err = run_ranks(exe, 2, halted, ["--set", "particles.expansion_time=0.02", "--set", "drive.start=0.05",
+                                                 "--set", "run.duration=0.3", "--set", "run.halt_overlap=0.0005"])
+        check(status != 0, f"halted run on 2 ranks: exit {status}")
+        summary_path = os.path.join(halted, "summary.json")
+        if check(os.path.exists(summary_path), f"halted run on 2 ranks wrote no summary.json: {err[-1000:]}"):
+            errors = json.load(open(summary_path))["errors"]
+            check(any("halt_overlap" in e for e in errors), f"halted run on 2 ranks: errors {errors}")
+            check(len(read_csv(os.path.join(halted, "final_state.csv"))) > 0, "halted run: final_state.csv empty")
 
         # Refused on several ranks, before anything runs.
         for args, what in ((["--set", "output.checkpoint_interval=0.01"], "output.checkpoint_interval"),

@@ -60,6 +60,14 @@ void gather_view(const dem::DemState& local, const parallel::Communicator& comm,
   for (const auto& r : records) view.particles.push_back(r);
 }
 
+std::string fault_on_any_rank(const std::string& mine, const parallel::Communicator& comm) {
+  if (!comm.any(!mine.empty())) return "";
+  const auto all = comm.gather(std::vector<std::uint8_t>(mine.begin(), mine.end()));
+  for (std::size_t r = 0; r < all.size(); ++r)
+    if (!all[r].empty()) return "rank " + std::to_string(r) + ": " + std::string(all[r].begin(), all[r].end());
+  return "a fault on another MPI rank (rank 0's summary.json has its message)";
+}
+
 dem::ContactStatistics global_statistics(const dem::ContactStatistics& local, const parallel::Communicator& comm) {
   dem::ContactStatistics g = local;
   g.max_overlap_ratio = comm.max(local.max_overlap_ratio);

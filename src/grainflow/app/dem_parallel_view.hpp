@@ -19,6 +19,10 @@ dem::SlabDecomposition dem_slabs(const dem::DemState& initial, int ranks);
 // Rank 0: `view` gets every rank's own particles and `local`'s clock and walls.
 void gather_view(const dem::DemState& local, const parallel::Communicator& comm, dem::DemState& view);
 
+// A fault seen at an output time on any rank, so that all ranks stop there together and write their
+// outputs: "" when none; rank 0 gets the first rank's message, the others a pointer to it.
+std::string fault_on_any_rank(const std::string& mine, const parallel::Communicator& comm);
+
 dem::ContactStatistics global_statistics(const dem::ContactStatistics& local, const parallel::Communicator& comm);
 
 }  // namespace grainflow::app

@@ -215,9 +215,21 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
                          [&](io::StateArchive& ar) { transfer(ar, e); });
   };
   int interrupted = 0;
+  bool stopped_together = false;  // MPI: a failure every rank saw at the same output time
 
   auto record = [&](auto& e) {
-    dem::check_faults(e.state(), derived);  // NaN or a particle through a wall: stop here (issue 7)
+    // NaN or a particle through a wall: stop here (issue 7), on every rank at once.
+    std::string fault;
+    try {
+      dem::check_faults(e.state(), derived);
+    } catch (const RunError& error) {
+      fault = error.what();
+    }
+    if (ranks) fault = fault_on_any_rank(fault, comm);
+    if (!fault.empty()) {
+      stopped_together = true;
+      throw RunError(fault);
+    }
     const auto& st = view(e);
     const dem::ContactStatistics stats = ranks ? global_statistics(e.statistics(), comm) : e.statistics();
     TimeseriesRow row{};
@@ -246,6 +258,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     const bool monitored = !expanding && !settling;
     if (monitored) max_overlap_seen = std::max(max_overlap_seen, row.max_overlap_ratio);
     if (monitored && c.run.halt_overlap > 0.0 && row.max_overlap_ratio > c.run.halt_overlap) {
+      stopped_together = true;  // the overlap is the maximum over all ranks: each stops here
       throw RunError(dem::overlap_halt_message(e.state(), e.pairs(), derived, row.max_overlap_ratio, c.run.halt_overlap));
     }
   };
@@ -267,7 +280,10 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
             }
           }
           for (long step = e.state().step + 1; step <= total_steps; ++step) {
-            if ((interrupted = pending_interrupt()) != 0) break;
+            // Under MPI the ranks agree every 100 steps, so that all stop at the same step.
+            if (!ranks) interrupted = pending_interrupt();
+            else if (step % 100 == 0) interrupted = static_cast<int>(comm.max(pending_interrupt()));
+            if (interrupted != 0) break;
             e.step();
             if (trajectory) trajectory->sampler->observe(e.state().particles, e.state().box, e.state().time - dt, e.state().time);
             if (zone_series) zone_series->observe(e.state(), profile, c);
@@ -292,7 +308,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
             if (checkpoint_schedule.due(step) && step < total_steps) checkpoint(e);
           }
           // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
-          if (interrupted != 0 || c.output.checkpoint_interval > 0.0) checkpoint(e);
+          if (!ranks && (interrupted != 0 || c.output.checkpoint_interval > 0.0)) checkpoint(e);
         },
         engine);
   } catch (const dem::NonFiniteState& fault) {  // found by the engine, which does not know the case
@@ -302,16 +318,17 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     errors.push_back(error.what());
     exit_status = 1;
   }
-  if (ranks && exit_status != 0) {
+  if (ranks && exit_status != 0 && !stopped_together) {
     // A fault seen on one rank cannot reach the others, which wait in the next exchange: stop all.
     std::cerr << "grainflow: rank " << comm.rank() << ": run failed: " << errors.back()
-              << " (on several ranks the outputs are not written after a failure)\n";
+              << " (found inside a step on one rank, so every rank stops without writing the outputs)\n";
     comm.abort(1);
   }
   if (interrupted != 0) {
     const double t = std::visit([](auto& e) { return e.state().time; }, engine);
     errors.push_back(std::string("interrupted by ") + signal_name(interrupted) + " at t = " + std::to_string(t) + " s; " +
-                     "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5");
+                     (ranks ? std::string("several MPI ranks write no checkpoint yet; the outputs hold the time run")
+                            : "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5"));
     exit_status = 128 + interrupted;
   }
   progress.finish();
