@@ -377,6 +377,13 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
           summary.integer("mpi_slab_axis", e.domain()->slabs().axis);
           summary.integer("mpi_migrations", migrations);
           summary.integer("mpi_ghosts", ghosts);
+          summary.integer("mpi_rebalances", e.domain()->rebalances());
+          const auto& cuts = e.domain()->slabs().bounds;
+          summary.string("mpi_slab_bounds", [&] {
+            std::string text;
+            for (double b : cuts) text += (text.empty() ? "" : " ") + std::to_string(b);
+            return text;
+          }());
         }
         summary.number("particle_steps_per_second",
                        wall_seconds > 0 ? moving * double(st.step - first_step) / wall_seconds : 0.0);

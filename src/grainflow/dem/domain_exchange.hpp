@@ -56,6 +56,7 @@ class DomainExchange {
 
   const SlabDecomposition& slabs() const { return slabs_; }
   long long migrated() const { return migrated_; }  // particles this rank sent to another owner
+  long long rebalances() const { return rebalances_; }
   long long ghosts() const {                        // copies this rank holds now
     long long n = 0;
     for (const auto& ids : receive_ids_) n += static_cast<long long>(ids.size());
@@ -76,6 +77,7 @@ class DomainExchange {
   // immigrants arrive with theirs (appended to `kept`, so they win over a copy's), ghosts are renewed.
   void redistribute(ParticleStore& p, ContactStore<State>& contacts, std::vector<KeptPair>& kept) {
     const int me = comm_.rank(), ranks = comm_.size();
+    if (++rebuilds_ % kRebalanceEvery == 0) rebalance(p);
     const std::size_t walls = contacts.wall_state.size();
     std::vector<std::uint32_t> stay;
     std::vector<std::pair<std::uint32_t, int>> leaving;  // (id, new owner), sorted by id
@@ -194,6 +196,19 @@ class DomainExchange {
     std::array<std::int32_t, 3> image;
   };
 
+  // Every kRebalanceEvery rebuilds the cuts move so that each rank owns as many particles as the
+  // others again (a bed heaps, a chute's front moves); the particles then migrate as usual.
+  static constexpr long kRebalanceEvery = 20;
+  static constexpr int kBalanceBins = 4096;
+  void rebalance(const ParticleStore& p) {
+    std::vector<double> counts(kBalanceBins, 0.0);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (!p.ghost[i]) counts[slabs_.bin_of(p.position[i], kBalanceBins)] += 1.0;
+    comm_.sum_in_place(counts.data(), counts.size());
+    slabs_.rebalance(counts);
+    ++rebalances_;
+  }
+
   void send_ghosts(ParticleStore& p, ContactStore<State>& contacts) {
     const int me = comm_.rank(), ranks = comm_.size();
     send_ids_.assign(ranks, {});
@@ -224,7 +239,7 @@ class DomainExchange {
 
   const parallel::Communicator& comm_;
   SlabDecomposition slabs_;
-  long long migrated_ = 0;
+  long long migrated_ = 0, rebuilds_ = 0, rebalances_ = 0;
   std::vector<std::vector<std::uint32_t>> send_ids_, receive_ids_;      // by rank, in message order
   std::vector<std::vector<std::uint32_t>> send_index_, receive_index_;  // the same, as indices now
 };

@@ -35,6 +35,30 @@ SlabDecomposition SlabDecomposition::balanced(const std::vector<Vec3>& positions
   return d;
 }
 
+int SlabDecomposition::bin_of(const Vec3& x, int bins) const {
+  const double lo = bounds.front(), length = bounds.back() - bounds.front();
+  double v = x[axis];
+  if (periodic) v -= length * std::floor((v - lo) / length);
+  return std::clamp(static_cast<int>((v - lo) / length * bins), 0, bins - 1);
+}
+
+void SlabDecomposition::rebalance(const std::vector<double>& counts) {
+  const double lo = bounds.front(), length = bounds.back() - bounds.front();
+  const int bins = static_cast<int>(counts.size());
+  double total = 0.0;
+  for (double c : counts) total += c;
+  if (!(total > 0.0)) return;
+  double below = 0.0;
+  int b = 0;
+  for (int r = 1; r < ranks(); ++r) {
+    const double target = total * r / ranks();
+    while (b < bins && below + counts[b] < target) below += counts[b++];
+    // Within bin b, linearly: the cut where the running count reaches the target.
+    const double share = b < bins && counts[b] > 0.0 ? (target - below) / counts[b] : 0.0;
+    bounds[r] = std::clamp(lo + (b + share) * length / bins, bounds[r - 1], bounds.back());
+  }
+}
+
 int SlabDecomposition::owner(const Vec3& x) const {
   double v = x[axis];
   const double lo = bounds.front(), length = bounds.back() - bounds.front();

@@ -22,6 +22,11 @@ struct SlabDecomposition {
   static SlabDecomposition balanced(const std::vector<Vec3>& positions, const PeriodicBox& box, const Vec3& gravity,
                                     int ranks, double ghost_width);
   int ranks() const { return static_cast<int>(bounds.size()) - 1; }
+  // Load balancing as the material moves: `counts` are the particles in equal bins along the axis
+  // (every rank's, summed); the cuts move to where each rank gets the same number again, to the
+  // resolution of a bin.
+  void rebalance(const std::vector<double>& counts);
+  int bin_of(const Vec3& x, int bins) const;
   // The rank owning a particle at `x` (coordinates outside the box go to the nearest end slab, or
   // wrap along a periodic axis).
   int owner(const Vec3& x) const;
