@@ -2,11 +2,20 @@
 
 #include <filesystem>
 
+#include "grainflow/app/interrupt.hpp"
+
 namespace grainflow::app {
 
 std::string checkpoint_folder(const std::string& checkpoint) {
   const std::filesystem::path folder = std::filesystem::path(checkpoint).parent_path();
   return folder.empty() ? "." : folder.string();
+}
+
+std::string interrupted_message(int signal, double time, const std::string& unit, const CaseConfig& c,
+                                const std::string& dir, bool checkpointed) {
+  return std::string("interrupted by ") + signal_name(signal) + " at t = " + std::to_string(time) + unit + "; " +
+         (checkpointed ? "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5"
+                       : std::string("several MPI ranks write no checkpoint yet; the outputs hold the time run"));
 }
 
 io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles) {

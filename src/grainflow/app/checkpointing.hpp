@@ -20,6 +20,11 @@ io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long l
 // The folder holding `checkpoint` (and the copies of the HDF5 streams written with it).
 std::string checkpoint_folder(const std::string& checkpoint);
 
+// summary.json's error for a run stopped by SIGINT / SIGTERM at `time` (its unit: " s" or ""), with
+// the command that continues it when a checkpoint was written.
+std::string interrupted_message(int signal, double time, const std::string& unit, const CaseConfig& c,
+                                const std::string& dir, bool checkpointed);
+
 // Writes dir/checkpoint.h5 from `transfer(archive)`, which must be the same function a restart
 // reads with.
 template <class Transfer>

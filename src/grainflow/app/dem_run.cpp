@@ -326,9 +326,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   }
   if (interrupted != 0) {
     const double t = std::visit([](auto& e) { return e.state().time; }, engine);
-    errors.push_back(std::string("interrupted by ") + signal_name(interrupted) + " at t = " + std::to_string(t) + " s; " +
-                     (ranks ? std::string("several MPI ranks write no checkpoint yet; the outputs hold the time run")
-                            : "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5"));
+    errors.push_back(interrupted_message(interrupted, t, " s", c, dir, !ranks));
     exit_status = 128 + interrupted;
   }
   progress.finish();

@@ -199,8 +199,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   }
   if (interrupted != 0) {
     const double t = std::visit([](auto& e) { return e.state().time; }, engine);
-    errors.push_back(std::string("interrupted by ") + signal_name(interrupted) + " at t = " + std::to_string(t) + "; " +
-                     "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5");
+    errors.push_back(interrupted_message(interrupted, t, "", c, dir, true));
     exit_status = 128 + interrupted;
   }
   progress.finish();

@@ -383,9 +383,9 @@ class DemEngine {
   std::vector<Vec3> position_at_build_;
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;  // per thread: shares for others' particles (kept zero)
   std::vector<std::vector<std::uint32_t>> thread_touched_;       // per thread: where those shares are
-  std::array<int, 6> bump_wall_{};
+  std::array<int, 6> bump_wall_{};      // wall carrying each face's bumps, -1 when they stand still
+  std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps
   std::unique_ptr<DomainExchange<State>> domain_;  // MPI ranks > 1 only
-  std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps  // wall carrying each face's bumps, -1 when they stand still
   ContactStatistics stats_;
 };
 

@@ -144,27 +144,22 @@ void H5Writer::write(const std::string& name, const std::vector<double>& values,
                "write dataset '" + name + "'");
 }
 
-void H5Writer::write_bytes(const std::string& name, const std::vector<std::uint8_t>& bytes) {
-  hsize_t dims[1] = {bytes.size()};
+void H5Writer::write_flat(const std::string& name, std::int64_t type, const void* data, std::size_t count) {
+  hsize_t dims[1] = {count};
   H5Handle space(check(H5Screate_simple(1, dims, nullptr), path_, "describe '" + name + "'"), close_space);
-  H5Handle d(check(H5Dcreate2(file_.get(), name.c_str(), H5T_NATIVE_UINT8, space.get(), H5P_DEFAULT, H5P_DEFAULT,
-                              H5P_DEFAULT),
+  H5Handle d(check(H5Dcreate2(file_.get(), name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                    path_, "create dataset '" + name + "'"),
              close_dataset);
-  if (!bytes.empty())
-    check_status(H5Dwrite(d.get(), H5T_NATIVE_UINT8, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data()), path_,
-                 "write dataset '" + name + "'");
+  if (count > 0)
+    check_status(H5Dwrite(d.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), path_, "write dataset '" + name + "'");
+}
+
+void H5Writer::write_bytes(const std::string& name, const std::vector<std::uint8_t>& bytes) {
+  write_flat(name, H5T_NATIVE_UINT8, bytes.data(), bytes.size());
 }
 
 void H5Writer::write(const std::string& name, const std::vector<std::int64_t>& values) {
-  hsize_t dims[1] = {values.size()};
-  H5Handle space(check(H5Screate_simple(1, dims, nullptr), path_, "describe '" + name + "'"), close_space);
-  H5Handle d(check(H5Dcreate2(file_.get(), name.c_str(), H5T_NATIVE_INT64, space.get(), H5P_DEFAULT, H5P_DEFAULT,
-                              H5P_DEFAULT),
-                   path_, "create dataset '" + name + "'"),
-             close_dataset);
-  check_status(H5Dwrite(d.get(), H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), path_,
-               "write dataset '" + name + "'");
+  write_flat(name, H5T_NATIVE_INT64, values.data(), values.size());
 }
 
 namespace {

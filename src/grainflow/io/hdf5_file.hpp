@@ -87,6 +87,7 @@ class H5Writer {
   void copy_to(const std::string& path);
 
  private:
+  void write_flat(const std::string& name, std::int64_t type, const void* data, std::size_t count);  // 1-D, HDF5 type id
   std::string path_, temporary_;
   H5Handle file_;
   bool committed_ = false;
