@@ -312,7 +312,13 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         },
         engine);
   } catch (const dem::NonFiniteState& fault) {  // found by the engine, which does not know the case
-    errors.push_back(dem::with_cause(fault, derived));
+    std::string message = dem::with_cause(fault, derived);
+    if (ranks) {  // every rank threw at the same rebuild: rank 0 reports the faulty rank's message
+      const bool mine = std::string(fault.what()) != dem::kFaultOnAnotherRank;
+      message = fault_on_any_rank(mine ? message : "", comm);
+      stopped_together = true;
+    }
+    errors.push_back(message);
     exit_status = 1;
   } catch (const RunError& error) {
     errors.push_back(error.what());

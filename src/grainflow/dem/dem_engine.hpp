@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -205,11 +206,14 @@ class DemEngine {
 
   void rebuild(bool first) {
     ParticleStore& p = s_.particles;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      if (!std::isfinite(p.position[i].x) || !std::isfinite(p.position[i].y) || !std::isfinite(p.position[i].z))
-        throw non_finite_state(s_, i);  // the run adds the likely cause (fault_checks.hpp)
-      s_.box.wrap(p.position[i], p.image[i]);
-    }
+    std::optional<std::size_t> broken;
+    for (std::size_t i = 0; i < p.size() && !broken; ++i)
+      if (!p.ghost[i] && !fault_detail::finite(p.position[i])) broken = i;
+    // MPI: every rank learns of a fault on any rank here, before the exchange below, so that all
+    // stop at this step together (and write their outputs) instead of waiting on the faulty one.
+    if (domain_ ? domain_->any(broken.has_value()) : broken.has_value())
+      throw broken ? non_finite_state(s_, *broken) : NonFiniteState(kFaultOnAnotherRank);  // the run adds the cause
+    for (std::size_t i = 0; i < p.size(); ++i) s_.box.wrap(p.position[i], p.image[i]);
     // The touching pairs' states, by particle id, are set aside and the old list freed before the new
     // one is built, so that the peak memory holds one list, not two. Until here the particles are
     // in the old list's order.

@@ -25,6 +25,9 @@ class NonFiniteState : public RunError {
   using RunError::RunError;
 };
 
+// What the other ranks of an MPI run throw when one rank finds a non-finite state inside a step.
+inline constexpr const char* kFaultOnAnotherRank = "non-finite state on another MPI rank";
+
 namespace fault_detail {
 inline std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
   char text[160];
