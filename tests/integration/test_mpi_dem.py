@@ -15,7 +15,7 @@ case files and outputs of a serial run.
 - The same holds with walls at the ends of the slab axis (the end ranks own the wall contacts),
   and with two OpenMP threads inside each of two ranks.
 - A fault all ranks see at an output time stops them together, with the outputs written.
-- What several ranks cannot do yet is refused before anything runs (exit 2).
+- The sampled outputs, snapshots and checkpoints on several ranks: test_mpi_outputs.py.
 
 Runs on this 2-core machine with `mpirun --oversubscribe`; as root Open MPI needs its two
 OMPI_ALLOW_RUN_AS_ROOT variables.
@@ -142,14 +142,6 @@ def main():
             errors = json.load(open(summary_path))["errors"]
             check(any("halt_overlap" in e for e in errors), f"halted run on 2 ranks: errors {errors}")
             check(len(read_csv(os.path.join(halted, "final_state.csv"))) > 0, "halted run: final_state.csv empty")
-
-        # Refused on several ranks, before anything runs.
-        for args, what in ((["--set", "output.checkpoint_interval=0.01"], "output.checkpoint_interval"),
-                           (["--set", "trajectory.samples=10"], "trajectory")):
-            path = os.path.join(tmp, "refused")
-            status, err = run_ranks(exe, 2, path, SHORT + args)
-            check(status != 0 and what in err, f"2 ranks with {what}: exit {status}: {err[-500:]}")
-            check(not os.path.exists(os.path.join(path, "summary.json")), f"2 ranks with {what}: wrote outputs")
     return finish("test_mpi_dem")
 
 

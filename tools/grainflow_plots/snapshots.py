@@ -1,6 +1,7 @@
 """Projected snapshots of the bed at eight phases of the floor cycle (Lan 1994 Figs. A4.10, A5.10).
 
-snapshots/particles.pvd + snapshots/particles_NNNNNN.vtu [+ timeseries.csv] -> snapshots_phases.png:
+snapshots/particles.pvd + snapshots/particles_NNNNNN.vtu (or .pvtu with its pieces, from MPI ranks)
+[+ timeseries.csv] -> snapshots_phases.png:
     every particle as a circle of 0.4 times its radius, projected on the plane of the gravity axis and
     one horizontal axis (the convection plane of convection.csv when it exists, else the horizontal
     axis along which the bed is widest), the floor as a dotted line where timeseries.csv puts it at
@@ -66,7 +67,9 @@ def snapshot_list(folder):
 
 def read_vtu(path):
     """{'position': [N, 3], 'radius': [N], 'species': [N] or None, 'velocity': [N, 3] or None} of one
-    grainflow VTU file."""
+    grainflow VTU file, or of a parallel index (.pvtu, an MPI run's) with its pieces joined."""
+    if path.endswith(".pvtu"):
+        return read_pvtu(path)
     try:
         root = ET.parse(path).getroot()
     except (ET.ParseError, OSError) as error:
@@ -104,6 +107,23 @@ def read_vtu(path):
     species = array(data.get("species"), 1)
     return {"position": position, "radius": radius, "species": None if species is None else species.astype(int),
             "velocity": array(data.get("velocity"), 3)}
+
+
+def read_pvtu(path):
+    """The pieces a .pvtu names (each MPI rank's particles), joined as one snapshot."""
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError) as error:
+        raise PlotError(f"{path}: not a readable PVTU file ({error})") from error
+    sources = [piece.get("Source") for piece in root.iter("Piece")]
+    if not sources or not all(sources):
+        raise PlotError(f"{path}: no Piece with a Source")
+    pieces = [read_vtu(os.path.join(os.path.dirname(path), source)) for source in sources]
+    joined = {}
+    for key in ("position", "radius", "species", "velocity"):
+        values = [piece[key] for piece in pieces]
+        joined[key] = None if any(v is None for v in values) else np.concatenate(values)
+    return joined
 
 
 def floor_motion(outdir):

@@ -12,14 +12,14 @@ std::string checkpoint_folder(const std::string& checkpoint) {
 }
 
 std::string interrupted_message(int signal, double time, const std::string& unit, const CaseConfig& c,
-                                const std::string& dir, bool checkpointed) {
-  return std::string("interrupted by ") + signal_name(signal) + " at t = " + std::to_string(time) + unit + "; " +
-         (checkpointed ? "continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5"
-                       : std::string("several MPI ranks write no checkpoint yet; the outputs hold the time run"));
+                                const std::string& dir) {
+  return std::string("interrupted by ") + signal_name(signal) + " at t = " + std::to_string(time) + unit +
+         "; continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5";
 }
 
-io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles) {
-  io::Checkpoint checkpoint = io::read_checkpoint(path);
+io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles,
+                            const parallel::Communicator& comm) {
+  io::Checkpoint checkpoint = io::read_checkpoint(path, comm.rank());
   const auto& h = checkpoint.header;
   auto refuse = [&](const std::string& what) {
     throw InputError(path, "", "this checkpoint cannot continue case '" + c.path + "': " + what);
@@ -29,6 +29,9 @@ io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long l
     refuse("it is " + std::to_string(h.dimension) + "D, the case " + std::to_string(c.engine.dimension) + "D");
   if (h.particles != particles)
     refuse("it holds " + std::to_string(h.particles) + " particles, the case makes " + std::to_string(particles));
+  if (h.ranks != comm.size())
+    refuse("it was written by " + std::to_string(h.ranks) + " MPI rank(s), this run has " + std::to_string(comm.size()) +
+           " (each rank's state is its own: continue on " + std::to_string(h.ranks) + ")");
   if (h.time > c.run.duration)
     refuse("it is at t = " + std::to_string(h.time) + ", past the case's run.duration = " + std::to_string(c.run.duration) +
            " (raise it with --set run.duration=...)");

@@ -11,27 +11,36 @@
 #include "grainflow/core/version.hpp"
 #include "grainflow/io/checkpoint_file.hpp"
 #include "grainflow/io/state_archive.hpp"
+#include "grainflow/parallel/communicator.hpp"
 
 namespace grainflow::app {
 
-// Reads `path` and checks it belongs to a case of this engine, dimension and particle count.
-io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles);
+// Reads `path` (this rank's state) and checks it belongs to a case of this engine, dimension and
+// particle count, written by as many MPI ranks as this run has.
+io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles,
+                            const parallel::Communicator& comm = parallel::Communicator::world());
 
 // The folder holding `checkpoint` (and the copies of the HDF5 streams written with it).
 std::string checkpoint_folder(const std::string& checkpoint);
 
 // summary.json's error for a run stopped by SIGINT / SIGTERM at `time` (its unit: " s" or ""), with
-// the command that continues it when a checkpoint was written.
+// the command that continues it from the checkpoint written.
 std::string interrupted_message(int signal, double time, const std::string& unit, const CaseConfig& c,
-                                const std::string& dir, bool checkpointed);
+                                const std::string& dir);
 
 // Writes dir/checkpoint.h5 from `transfer(archive)`, which must be the same function a restart
-// reads with.
+// reads with. On several MPI ranks every rank calls it, with its own state; rank 0 gathers the
+// states and writes the file with `particles` (all of them, rank 0's gathered view).
 template <class Transfer>
 void write_run_checkpoint(const std::string& dir, const CaseConfig& c, const ParticleStore& particles, double time,
-                          long long step, Transfer&& transfer) {
+                          long long step, Transfer&& transfer,
+                          const parallel::Communicator& comm = parallel::Communicator::world()) {
   io::StateArchive ar = io::StateArchive::for_writing();
   transfer(ar);
+  std::vector<std::vector<std::uint8_t>> states;
+  if (comm.size() > 1) states = comm.gather(ar.bytes());
+  else states.push_back(ar.bytes());
+  if (!comm.root()) return;
   io::CheckpointHeader h;
   h.engine = c.engine.kind;
   h.dimension = c.engine.dimension;
@@ -41,7 +50,8 @@ void write_run_checkpoint(const std::string& dir, const CaseConfig& c, const Par
   h.version = kVersion;
   h.case_path = c.path;
   h.case_overrides = join_overrides(c.overrides);
-  io::write_checkpoint(dir + "/checkpoint.h5", h, particles, ar.bytes());
+  h.ranks = comm.size();
+  io::write_checkpoint(dir + "/checkpoint.h5", h, particles, states);
 }
 
 template <class Transfer>

@@ -7,16 +7,12 @@
 
 namespace grainflow::app {
 
-void refuse_beyond_parallel_dem(const CaseConfig& c, bool restarting) {
-  auto refuse = [&](const std::string& key) {
-    throw InputError(c.path, key, "not yet available on more than one MPI rank; run it on one rank (without mpirun)");
-  };
-  if (c.trajectory.enabled) refuse("trajectory");
-  if (c.zone_series.enabled) refuse("zone_series");
-  if (c.field.enabled) refuse("field");
-  if (c.tracers.enabled) refuse("tracers");
-  if (c.output.checkpoint_interval > 0.0) refuse("output.checkpoint_interval");
-  if (restarting) throw InputError(c.path, "", "--restart is not yet available on more than one MPI rank");
+observe::RankReduce over_ranks(const parallel::Communicator& comm) {
+  observe::RankReduce reduce;
+  if (comm.size() == 1) return reduce;
+  reduce.sum_in_place = [&comm](double* values, std::size_t count) { comm.sum_in_place(values, count); };
+  reduce.max_over_ranks = [&comm](double local) { return comm.max(local); };
+  return reduce;
 }
 
 dem::SlabDecomposition dem_slabs(const dem::DemState& initial, int ranks) {

@@ -1,17 +1,18 @@
-// A DEM run on several MPI ranks, seen as one: the observers and writers of dem_run.cpp work on a
-// whole particle store, so at each sample every rank's own particles (ghosts left out) are
-// gathered on rank 0, in id order, together with the rank's clock and walls; the other ranks get
-// an empty store. The contact counts are summed and the largest overlap taken over the ranks.
+// A DEM run on several MPI ranks, seen as one: the observers run on every rank over its own
+// particles and combine their sums through `over_ranks`; the contact counts are summed and the
+// largest overlap taken over the ranks. Only final_state.csv and a checkpoint's particle datasets
+// need every particle in one place: `gather_view` brings them to rank 0, in id order.
 #pragma once
 
 #include "grainflow/core/case_config.hpp"
 #include "grainflow/dem/dem_engine.hpp"
+#include "grainflow/observe/rank_reduce.hpp"
 #include "grainflow/parallel/communicator.hpp"
 
 namespace grainflow::app {
 
-// Refuses (InputError) what a run of several ranks cannot do yet, before anything is written.
-void refuse_beyond_parallel_dem(const CaseConfig& c, bool restarting);
+// Sums and maxima over the ranks for the observers (the identity on one rank).
+observe::RankReduce over_ranks(const parallel::Communicator& comm);
 
 // The slabs for `ranks` ranks over the initial state, with ghosts as far out as a list reaches.
 dem::SlabDecomposition dem_slabs(const dem::DemState& initial, int ranks);

@@ -125,28 +125,23 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   // sees the whole and writes every file.
   const parallel::Communicator& comm = parallel::Communicator::world();
   const bool ranks = comm.size() > 1;
-  if (ranks) refuse_beyond_parallel_dem(c, !options.restart.empty());
-  dem::DemState initial = dem::build_dem_state(c);
-  std::optional<dem::EngineDomain> domain;
-  if (ranks) domain = dem::EngineDomain{&comm, dem_slabs(initial, comm.size())};
-  dem::DemEngineVariant engine = dem::make_engine(c, std::move(initial), options.threads, domain ? &*domain : nullptr);
   const bool writes = comm.root();
-  // What the observers and writers see: the engine's particles, or all ranks' gathered on rank 0.
-  dem::DemState gathered;
-  auto view = [&](auto& e) -> const dem::DemState& {
-    if (!ranks) return e.state();
-    gather_view(e.state(), comm, gathered);
-    return gathered;
-  };
-  const long long particle_count =
-      std::visit([](auto& e) { return static_cast<long long>(e.state().particles.size()); }, engine);
+  // Every observer runs on each rank over the rank's own particles and sums over the ranks through
+  // this (the identity on one rank); particles are gathered on rank 0 only for final_state.csv.
+  const observe::RankReduce rank_reduce = over_ranks(comm);
+  dem::DemState initial = dem::build_dem_state(c);
+  const long long particle_count = static_cast<long long>(initial.particles.size());
   std::optional<io::Checkpoint> restart;
-  if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count);
+  if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count, comm);
 
   fs::create_directories(options.output_directory);
   const std::string dir = options.output_directory;
   std::optional<io::PvdSeries> snapshots;
-  if (c.output.snapshot_interval > 0.0 && writes) snapshots.emplace(dir + "/snapshots");
+  if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
+  auto snapshot = [&](const dem::DemState& st) {
+    if (ranks) snapshots->add_piece(st.particles, st.time, comm.rank(), comm.size());
+    else snapshots->add(st.particles, st.time);
+  };
 
   const int axis = derived.gravity_axis;
   double zone_thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : derived.reference_diameter;
@@ -159,7 +154,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   if (c.drive.enabled && c.drive.face == axis * 2)
     zones_lo -= zone_thickness * std::ceil(c.drive.amplitude[axis] / zone_thickness - 1e-9);
   observe::ZoneProfile profile(axis, zones_lo, c.domain.hi[axis], zone_thickness, area);
-  if (ranks) profile.set_reduce([&comm](double* values, std::size_t count) { comm.sum_in_place(values, count); });
+  profile.set_reduce(rank_reduce);
 
   const double dt = derived.time_step;
   const long total_steps = static_cast<long>(std::llround(c.run.duration / dt));
@@ -170,17 +165,21 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   const long average_from = static_cast<long>(std::ceil(c.output.average_start / dt - 1e-9));
 
   std::optional<TrajectoryOutput> trajectory;
-  if (c.trajectory.enabled)
-    std::visit([&](auto& e) { trajectory.emplace(c, derived, e.state().particles, dir); }, engine);
+  if (c.trajectory.enabled) trajectory.emplace(c, derived, initial.particles, dir, writes, rank_reduce);
 
   std::optional<ZoneSeriesOutput> zone_series;
-  if (c.zone_series.enabled) zone_series.emplace(c, derived, profile, dir);
+  if (c.zone_series.enabled) zone_series.emplace(c, derived, profile, dir, writes);
 
   std::optional<FieldOutput> field;
   if (c.field.enabled) field.emplace(c, derived, zones_lo);
 
   std::optional<TracerOutput> tracers;
-  if (c.tracers.enabled) std::visit([&](auto& e) { tracers.emplace(c, derived, e.state().particles); }, engine);
+  if (c.tracers.enabled) tracers.emplace(c, derived, initial.particles);
+
+  // Under mpirun with several ranks each rank integrates a slab (dem/domain_exchange.hpp).
+  std::optional<dem::EngineDomain> domain;
+  if (ranks) domain = dem::EngineDomain{&comm, dem_slabs(initial, comm.size())};
+  dem::DemEngineVariant engine = dem::make_engine(c, std::move(initial), options.threads, domain ? &*domain : nullptr);
 
   const observe::BedSurfaceThresholds bed_thresholds{c.output.bed_gap_fraction, c.output.bed_surface_fraction};
   const bool floor_below = c.gravity[axis] < 0.0;  // bed height needs gravity toward the low face
@@ -195,6 +194,14 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   int exit_status = 0;
   long first_step = 0;  // steps before this process's (a restart's checkpoint)
 
+  // All particles on rank 0 (for final_state.csv and a checkpoint's datasets); the engine's own on
+  // one rank.
+  dem::DemState gathered;
+  auto view = [&](auto& e) -> const dem::DemState& {
+    if (!ranks) return e.state();
+    gather_view(e.state(), comm, gathered);
+    return gathered;
+  };
   // The run's whole state, one function for both directions (checkpoint and restart).
   auto transfer = [&](io::StateArchive& ar, auto& e) {
     ar.tag("dem run");
@@ -208,11 +215,12 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   };
   // The HDF5 streams are copied beside the checkpoint first: a checkpoint never counts more samples
   // than its copies hold.
+  // Several MPI ranks: each rank's own state, gathered by rank 0 into the one file.
   auto checkpoint = [&](auto& e) {
     if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
     if (zone_series) zone_series->copy_stream(dir + "/checkpoint_zone_series.h5");
-    write_run_checkpoint(dir, c, e.state().particles, e.state().time, e.state().step,
-                         [&](io::StateArchive& ar) { transfer(ar, e); });
+    write_run_checkpoint(dir, c, view(e).particles, e.state().time, e.state().step,
+                         [&](io::StateArchive& ar) { transfer(ar, e); }, comm);
   };
   int interrupted = 0;
   bool stopped_together = false;  // MPI: a failure every rank saw at the same output time
@@ -230,11 +238,12 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
       stopped_together = true;
       throw RunError(fault);
     }
-    const auto& st = view(e);
+    // Each rank measures its own particles; the sums are added over the ranks.
+    const auto& st = e.state();
     const dem::ContactStatistics stats = ranks ? global_statistics(e.statistics(), comm) : e.statistics();
     TimeseriesRow row{};
     row.time = st.time;
-    row.global = observe::sample_global(st.particles, axis);
+    row.global = observe::sample_global(st.particles, axis, rank_reduce);
     const FloorMotion floor = floor_motion(st, c);
     row.floor_position = floor.position;
     row.floor_velocity = floor.velocity;
@@ -246,7 +255,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     row.wall_collisions = stats.wall_collisions;
     if (floor_below)
       row.bed = observe::measure_bed_surface(st.particles, axis, floor_position(st, c, axis), area,
-                                             derived.reference_diameter, bed_thresholds);
+                                             derived.reference_diameter, bed_thresholds, rank_reduce);
     row.cell_temperature = profile.instantaneous_temperature(st.particles);
     e.statistics().max_overlap_ratio = 0.0;
     rows.push_back(row);
@@ -274,10 +283,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
             first_step = e.state().step;
           } else {
             record(e);
-            if (c.output.snapshot_interval > 0.0) {
-              const auto& v = view(e);
-              if (snapshots) snapshots->add(v.particles, v.time);
-            }
+            if (snapshots) snapshot(e.state());
           }
           for (long step = e.state().step + 1; step <= total_steps; ++step) {
             // Under MPI the ranks agree every 100 steps, so that all stop at the same step.
@@ -294,21 +300,19 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
             if (output_schedule.due(step)) {
               record(e);
               progress.update(e.state().time);
+              // Every 30 s of wall time the files so far are written (decided together: tracers gather).
               const auto now = std::chrono::steady_clock::now();
-              if (now - last_flush > std::chrono::seconds(30) && writes) {
-                write_timeseries(dir + "/timeseries.csv", rows);
-                if (tracers) tracers->write(dir + "/tracers.csv");
+              if (comm.any(now - last_flush > std::chrono::seconds(30))) {
+                if (writes) write_timeseries(dir + "/timeseries.csv", rows);
+                if (tracers) tracers->write(dir + "/tracers.csv", comm);
                 last_flush = now;
               }
             }
-            if (snapshot_schedule.due(step)) {
-              const auto& v = view(e);
-              if (snapshots) snapshots->add(v.particles, v.time);
-            }
+            if (snapshot_schedule.due(step)) snapshot(e.state());
             if (checkpoint_schedule.due(step) && step < total_steps) checkpoint(e);
           }
           // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
-          if (!ranks && (interrupted != 0 || c.output.checkpoint_interval > 0.0)) checkpoint(e);
+          if (interrupted != 0 || c.output.checkpoint_interval > 0.0) checkpoint(e);
         },
         engine);
   } catch (const dem::NonFiniteState& fault) {  // found by the engine, which does not know the case
@@ -332,7 +336,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   }
   if (interrupted != 0) {
     const double t = std::visit([](auto& e) { return e.state().time; }, engine);
-    errors.push_back(interrupted_message(interrupted, t, " s", c, dir, !ranks));
+    errors.push_back(interrupted_message(interrupted, t, " s", c, dir));
     exit_status = 128 + interrupted;
   }
   progress.finish();
@@ -345,7 +349,9 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         const auto& st = view(e);
         const long long migrations = e.domain() ? comm.sum(e.domain()->migrated()) : 0;
         const long long ghosts = e.domain() ? comm.sum(e.domain()->ghosts()) : 0;
-        if (!writes) return;  // rank 0 writes the run's files
+        if (field && ranks) field->field->sum_over_ranks(rank_reduce);
+        if (tracers) tracers->write(dir + "/tracers.csv", comm);  // collective: rank 0 writes
+        if (!writes) return;  // rank 0 writes the run's other files
         long moving = 0;
         for (std::size_t i = 0; i < st.particles.size(); ++i) moving += st.particles.motion[i] == Motion::free;
         const auto global = observe::sample_global(st.particles, axis);
@@ -353,7 +359,6 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         write_profiles(dir + "/profiles.csv", profile, derived.reference_diameter, derived.gravity_magnitude);
         write_final_state(dir + "/final_state.csv", st.particles, st.species);
         if (field) field->write(dir, c);
-        if (tracers) tracers->write(dir + "/tracers.csv");
 
         double mean_temperature = 0.0;
         long counted = 0;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstring>
+#include <tuple>
 
 #include "grainflow/core/version.hpp"
 #include "grainflow/io/atomic_file.hpp"
@@ -41,8 +43,8 @@ double floor_phase(const CaseConfig& c, int axis, double time) {
 }
 
 TrajectoryOutput::TrajectoryOutput(const CaseConfig& c, const dem::DerivedQuantities& d, const ParticleStore& p,
-                                 const std::string& dir)
-    : file(dir + "/trajectory.h5"), requested(c.trajectory.samples) {
+                                   const std::string& dir, bool writes, const observe::RankReduce& ranks)
+    : requested(c.trajectory.samples) {
   const auto& t = c.trajectory;
   std::vector<std::uint32_t> ids = t.particles;
   if (ids.empty())
@@ -51,48 +53,55 @@ TrajectoryOutput::TrajectoryOutput(const CaseConfig& c, const dem::DerivedQuanti
   std::sort(ids.begin(), ids.end());
   const double window = t.window > 0.0 ? t.window : 0.5 * c.run.collision_steps * d.time_step;
   const double start = t.start >= 0.0 ? t.start : c.output.average_start;
-  std::vector<std::int64_t> id_column(ids.begin(), ids.end());
-  file.write("/id", id_column);
-  write_run_attributes(file, c, d, start, "time s, velocity m/s, position m (unwrapped), window and time_step s");
-  file.attribute("/", "window", window);
-  file.attribute("/", "samples_requested", static_cast<std::int64_t>(t.samples));
-  file.attribute("/", "max_lag", static_cast<std::int64_t>(t.max_lag > 0 ? t.max_lag : t.samples / 2));
-  file.attribute("/", "restitution", c.contact.restitution);
-  const auto n = static_cast<unsigned long long>(ids.size());
-  time = file.growing("/time", {}, 1024);
-  velocity = file.growing("/velocity", {n, 3}, 16);
-  position = file.growing("/position", {n, 3}, 16);
+  if (writes) {
+    file.emplace(dir + "/trajectory.h5");
+    std::vector<std::int64_t> id_column(ids.begin(), ids.end());
+    file->write("/id", id_column);
+    write_run_attributes(*file, c, d, start, "time s, velocity m/s, position m (unwrapped), window and time_step s");
+    file->attribute("/", "window", window);
+    file->attribute("/", "samples_requested", static_cast<std::int64_t>(t.samples));
+    file->attribute("/", "max_lag", static_cast<std::int64_t>(t.max_lag > 0 ? t.max_lag : t.samples / 2));
+    file->attribute("/", "restitution", c.contact.restitution);
+    const auto n = static_cast<unsigned long long>(ids.size());
+    time = file->growing("/time", {}, 1024);
+    velocity = file->growing("/velocity", {n, 3}, 16);
+    position = file->growing("/position", {n, 3}, 16);
+  }
   sampler.emplace(std::move(ids), start, window, t.samples,
                   [this](double when, const std::vector<double>& v, const std::vector<double>& x) {
+                    if (!file) return;
                     time.append(&when);
                     velocity.append(v.data());
                     position.append(x.data());
                   });
+  sampler->set_reduce(ranks);
 }
 
 void TrajectoryOutput::finish(std::vector<std::string>& warnings) {
-  finish_samples(file, "trajectory", sampler->taken(), requested, warnings);
+  if (file) finish_samples(*file, "trajectory", sampler->taken(), requested, warnings);
 }
 
 ZoneSeriesOutput::ZoneSeriesOutput(const CaseConfig& c, const dem::DerivedQuantities& d,
-                                 const observe::ZoneProfile& zones, const std::string& dir)
-    : file(dir + "/zone_series.h5"), requested(c.zone_series.samples) {
+                                   const observe::ZoneProfile& zones, const std::string& dir, bool writes)
+    : requested(c.zone_series.samples) {
   const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
   interval = c.zone_series.interval > 0.0 ? c.zone_series.interval : 1.0 / (20.0 * f);
   start = c.zone_series.start >= 0.0 ? c.zone_series.start : c.output.average_start;
+  if (!writes) return;
+  file.emplace(dir + "/zone_series.h5");
   const auto centres = zones.zone_centres();
-  file.write("/zone_centre", centres, {centres.size()});
-  write_run_attributes(file, c, d, start, "time s, zone_velocity m/s, floor_position m, floor_velocity m/s, zone_centre m");
-  file.attribute("/", "interval", interval);
-  file.attribute("/", "drive_frequency", f);
-  time = file.growing("/time", {}, 1024);
-  zone_velocity = file.growing("/zone_velocity", {centres.size(), 3}, 64);
-  floor_position = file.growing("/floor_position", {}, 1024);
-  floor_velocity = file.growing("/floor_velocity", {}, 1024);
+  file->write("/zone_centre", centres, {centres.size()});
+  write_run_attributes(*file, c, d, start, "time s, zone_velocity m/s, floor_position m, floor_velocity m/s, zone_centre m");
+  file->attribute("/", "interval", interval);
+  file->attribute("/", "drive_frequency", f);
+  time = file->growing("/time", {}, 1024);
+  zone_velocity = file->growing("/zone_velocity", {centres.size(), 3}, 64);
+  floor_position = file->growing("/floor_position", {}, 1024);
+  floor_velocity = file->growing("/floor_velocity", {}, 1024);
 }
 
 void ZoneSeriesOutput::finish(std::vector<std::string>& warnings) {
-  finish_samples(file, "zone_series", taken, requested, warnings);
+  if (file) finish_samples(*file, "zone_series", taken, requested, warnings);
 }
 
 FieldOutput::FieldOutput(const CaseConfig& c, const dem::DerivedQuantities& d, double vertical_lo) : axis(d.gravity_axis) {
@@ -156,13 +165,50 @@ std::string TracerOutput::row(double time, std::uint32_t id, const Vec3& x, cons
   return line;
 }
 
-void TracerOutput::write(const std::string& path) const {
+void TracerOutput::write(const std::string& path, const parallel::Communicator& comm) const {
+  std::vector<Row> all;
+  if (comm.size() == 1) {
+    all = rows;
+  } else {
+    // Each row as sample, id, length and text; rank 0 merges them by sample, then id.
+    std::vector<std::uint8_t> mine;
+    auto put = [&mine](const void* data, std::size_t size) {
+      const auto* bytes = static_cast<const std::uint8_t*>(data);
+      mine.insert(mine.end(), bytes, bytes + size);
+    };
+    for (const Row& r : rows) {
+      const std::uint64_t length = r.text.size();
+      put(&r.sample, sizeof r.sample);
+      put(&r.id, sizeof r.id);
+      put(&length, sizeof length);
+      put(r.text.data(), r.text.size());
+    }
+    for (const auto& from : comm.gather(mine)) {
+      std::size_t at = 0;
+      auto take = [&](void* data, std::size_t size) {
+        std::memcpy(data, from.data() + at, size);
+        at += size;
+      };
+      while (at < from.size()) {
+        Row r;
+        std::uint64_t length = 0;
+        take(&r.sample, sizeof r.sample);
+        take(&r.id, sizeof r.id);
+        take(&length, sizeof length);
+        r.text.assign(reinterpret_cast<const char*>(from.data() + at), length);
+        at += length;
+        all.push_back(std::move(r));
+      }
+    }
+    std::sort(all.begin(), all.end(), [](const Row& a, const Row& b) { return std::tie(a.sample, a.id) < std::tie(b.sample, b.id); });
+  }
+  if (!comm.root()) return;
   io::write_atomically(path, [&](std::ostream& out) {
     out << "# tracer histories: unwrapped centre, velocity, coordination (particles touched) and walls touched, with "
            "the floor's motion\n";
     out << "# units: time s, x y z m, vx vy vz m/s, floor_position m, floor_velocity m/s\n";
     out << "time,id,x,y,z,vx,vy,vz,coordination,wall_contacts,floor_position,floor_velocity\n";
-    for (const auto& r : rows) out << r;
+    for (const auto& r : all) out << r.text;
   });
 }
 

@@ -199,7 +199,7 @@ int run_edmd(const CaseConfig& c, const RunOptions& options) {
   }
   if (interrupted != 0) {
     const double t = std::visit([](auto& e) { return e.state().time; }, engine);
-    errors.push_back(interrupted_message(interrupted, t, "", c, dir, true));
+    errors.push_back(interrupted_message(interrupted, t, "", c, dir));
     exit_status = 128 + interrupted;
   }
   progress.finish();

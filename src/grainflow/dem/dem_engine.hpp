@@ -87,6 +87,7 @@ class DemEngine {
     if (walls != s_.walls.size()) throw RunError("checkpoint: the case has a different number of walls");
     for (auto& wall : s_.walls) ar(wall.position, wall.velocity);
     ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_);
+    if (domain_) ar(*domain_);  // MPI: a restart runs on as many ranks (checked before)
   }
 
   // One velocity-Verlet step: half kick, drift, walls, (rebuild), forces, half kick.

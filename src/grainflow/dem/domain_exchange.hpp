@@ -64,6 +64,11 @@ class DomainExchange {
   }
   bool any(bool local) const { return comm_.any(local); }
 
+  template <class Archive>  // checkpoints: this rank's cuts, counters and ghost bookkeeping
+  void serialize(Archive& ar) {
+    ar(slabs_, migrated_, rebuilds_, rebalances_, send_ids_, receive_ids_, send_index_, receive_index_);
+  }
+
   // The start: every rank built the same whole initial state; each keeps the particles in its slab.
   void keep_owned(ParticleStore& p, ContactStore<State>& contacts) const {
     std::vector<std::uint32_t> mine;

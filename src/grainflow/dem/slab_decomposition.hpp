@@ -32,6 +32,11 @@ struct SlabDecomposition {
   int owner(const Vec3& x) const;
   // Shortest distance along the axis from `x` to rank r's slab, through the periodic face too.
   double distance_to(const Vec3& x, int r) const;
+
+  template <class Archive>  // checkpoints: the cuts move as the run goes
+  void serialize(Archive& ar) {
+    ar(axis, bounds, periodic, ghost_width);
+  }
 };
 
 }  // namespace grainflow::dem

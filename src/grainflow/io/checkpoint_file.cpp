@@ -8,10 +8,12 @@
 namespace grainflow::io {
 namespace {
 constexpr const char* kFormat = "grainflow checkpoint 1";
-}
+std::string state_name(int rank) { return rank == 0 ? "/state" : "/state_rank_" + std::to_string(rank); }
+}  // namespace
 
 void write_checkpoint(const std::string& path, const CheckpointHeader& h, const ParticleStore& p,
-                      const std::vector<std::uint8_t>& state) {
+                      const std::vector<std::vector<std::uint8_t>>& states) {
+  if (states.size() != static_cast<std::size_t>(h.ranks)) throw RunError("checkpoint: one state per MPI rank is needed");
   H5Writer file(path);
   file.attribute("/", "format", std::string(kFormat));
   file.attribute("/", "engine", h.engine);
@@ -22,6 +24,7 @@ void write_checkpoint(const std::string& path, const CheckpointHeader& h, const 
   file.attribute("/", "version", h.version);
   file.attribute("/", "case", h.case_path);
   file.attribute("/", "case_overrides", h.case_overrides);
+  file.attribute("/", "mpi_ranks", static_cast<std::int64_t>(h.ranks));
   // For people and scripts: the particles as plain datasets, in id order of the arrays.
   file.group("/particles");
   const std::size_t n = p.size();
@@ -38,7 +41,7 @@ void write_checkpoint(const std::string& path, const CheckpointHeader& h, const 
   std::vector<std::int64_t> ids(p.id.begin(), p.id.end()), species(p.species.begin(), p.species.end());
   file.write("/particles/id", ids);
   file.write("/particles/species", species);
-  file.write_bytes("/state", state);
+  for (std::size_t r = 0; r < states.size(); ++r) file.write_bytes(state_name(static_cast<int>(r)), states[r]);
   file.commit();
 }
 
@@ -66,6 +69,7 @@ CheckpointHeader header_of(const H5Reader& file, const std::string& path) {
   h.version = file.text("/", "version");
   h.case_path = file.text("/", "case");
   h.case_overrides = file.text("/", "case_overrides");
+  h.ranks = file.has_attribute("/", "mpi_ranks") ? static_cast<long long>(file.number("/", "mpi_ranks")) : 1;
   return h;
 }
 }  // namespace
@@ -76,11 +80,11 @@ CheckpointHeader read_checkpoint_header(const std::string& path) {
   return h;
 }
 
-Checkpoint read_checkpoint(const std::string& path) {
+Checkpoint read_checkpoint(const std::string& path, int rank) {
   Checkpoint c;
   reading(path, [&](const H5Reader& file) {
     c.header = header_of(file, path);
-    c.state = file.read_bytes("/state");
+    if (rank < c.header.ranks) c.state = file.read_bytes(state_name(rank));
   });
   return c;
 }

@@ -1,5 +1,7 @@
 // ParaView output: one VTU (unstructured grid of vertices) per snapshot and a PVD index that
-// lists them with their simulated times.
+// lists them with their simulated times. On several MPI ranks each rank writes its own particles
+// as a piece of the snapshot, and rank 0 a parallel index (.pvtu) naming the pieces, which the PVD
+// lists: no rank ever holds every particle, and ParaView reads the pieces as one data set.
 #pragma once
 
 #include <string>
@@ -11,13 +13,19 @@
 
 namespace grainflow::io {
 
+// The particles that are not ghosts, as vertices with their diameters, velocities, species and ids.
 void write_vtu(const std::string& path, const ParticleStore& particles);
+// A parallel index of VTU pieces (file names relative to the index's folder).
+void write_pvtu(const std::string& path, const std::vector<std::string>& pieces);
 
 class PvdSeries {
  public:
   explicit PvdSeries(std::string directory) : directory_(std::move(directory)) {}
   // Writes snapshot `index` at `time` and rewrites the index (atomically) to include it.
   void add(const ParticleStore& particles, double time);
+  // MPI: every rank calls this at the same snapshot with its own particles; rank 0 also writes the
+  // .pvtu and the index.
+  void add_piece(const ParticleStore& particles, double time, int rank, int ranks);
   std::size_t size() const { return entries_.size(); }
 
   template <class Archive>
@@ -31,6 +39,7 @@ class PvdSeries {
   }
 
  private:
+  void write_index() const;
   std::string directory_;
   std::vector<std::pair<double, std::string>> entries_;
 };

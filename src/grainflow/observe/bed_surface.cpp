@@ -9,20 +9,27 @@
 namespace grainflow::observe {
 namespace {
 
-// Solids fraction in slabs of `thickness` from `floor` up, of the free particles `included` selects.
+// Solids fraction in slabs of `thickness` from `floor` up, of the free particles `included` selects,
+// over every rank: the ranks agree on the highest slab first, then add their volumes.
 template <class Include>
 std::vector<double> slab_fractions(const ParticleStore& p, int axis, double floor, double area, double thickness,
-                                   Include&& included) {
-  std::vector<double> volume;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.motion[i] != Motion::free || !included(i)) continue;
+                                   const RankReduce& ranks, Include&& included) {
+  auto range = [&](std::size_t i) {
     const double r = p.radius[i], c = p.position[i][axis];
-    const int first = std::max(0, static_cast<int>(std::floor((c - r - floor) / thickness)));
-    const int last = static_cast<int>(std::floor((c + r - floor) / thickness));
-    if (last < 0) continue;
-    if (static_cast<int>(volume.size()) <= last) volume.resize(last + 1, 0.0);
+    return std::pair{std::max(0, static_cast<int>(std::floor((c - r - floor) / thickness))),
+                     static_cast<int>(std::floor((c + r - floor) / thickness))};
+  };
+  int highest = -1;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.counted(i) && included(i)) highest = std::max(highest, range(i).second);
+  std::vector<double> volume(static_cast<std::size_t>(ranks.max(highest) + 1), 0.0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.counted(i) || !included(i)) continue;
+    const auto [first, last] = range(i);
+    const double r = p.radius[i], c = p.position[i][axis];
     for (int z = first; z <= last; ++z) volume[z] += sphere_slab_volume(r, c, floor + z * thickness, floor + (z + 1) * thickness);
   }
+  ranks.sum(volume.data(), volume.size());
   for (double& v : volume) v /= thickness * area;
   return volume;
 }
@@ -30,10 +37,10 @@ std::vector<double> slab_fractions(const ParticleStore& p, int axis, double floo
 }  // namespace
 
 BedSurface measure_bed_surface(const ParticleStore& p, int axis, double floor, double area, double diameter,
-                               const BedSurfaceThresholds& thresholds) {
+                               const BedSurfaceThresholds& thresholds, const RankReduce& ranks) {
   BedSurface out;
   // Ballistic cut: the first dilute zone above the densest one.
-  const auto zones = slab_fractions(p, axis, floor, area, diameter, [](std::size_t) { return true; });
+  const auto zones = slab_fractions(p, axis, floor, area, diameter, ranks, [](std::size_t) { return true; });
   if (zones.empty()) return out;
   const auto densest = std::max_element(zones.begin(), zones.end()) - zones.begin();
   double cut = INFINITY;
@@ -45,21 +52,23 @@ BedSurface measure_bed_surface(const ParticleStore& p, int axis, double floor, d
   auto in_bed = [&](std::size_t i) { return p.position[i][axis] < cut; };
 
   const double slice = diameter / 10.0;
-  const auto slices = slab_fractions(p, axis, floor, area, slice, in_bed);
+  const auto slices = slab_fractions(p, axis, floor, area, slice, ranks, in_bed);
   std::size_t top = 0;
   for (std::size_t s = 0; s < slices.size(); ++s)
     if (slices[s] >= thresholds.surface_fraction) top = s + 1;
   out.height = top * slice;
 
-  double volume = 0.0;
+  double volume_and_ballistic[2] = {};
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.motion[i] != Motion::free) continue;
+    if (!p.counted(i)) continue;
     if (in_bed(i))
-      volume += 4.0 / 3.0 * M_PI * p.radius[i] * p.radius[i] * p.radius[i];
+      volume_and_ballistic[0] += 4.0 / 3.0 * M_PI * p.radius[i] * p.radius[i] * p.radius[i];
     else
-      ++out.ballistic;
+      volume_and_ballistic[1] += 1.0;
   }
-  if (out.height > 0.0) out.bulk_solids_fraction = volume / (out.height * area);
+  ranks.sum(volume_and_ballistic, 2);
+  out.ballistic = std::lround(volume_and_ballistic[1]);
+  if (out.height > 0.0) out.bulk_solids_fraction = volume_and_ballistic[0] / (out.height * area);
   return out;
 }
 

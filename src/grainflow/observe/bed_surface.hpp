@@ -11,6 +11,7 @@
 //    0.07 r of the tops of its spheres, where the lid would rest.
 #pragma once
 
+#include "grainflow/observe/rank_reduce.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::observe {
@@ -27,8 +28,9 @@ struct BedSurface {
 };
 
 // `floor` is the floor's position along `axis` (gravity along -axis); `area` the cross-section
-// normal to it; `diameter` sets the zone (d) and slice (d / 10) thicknesses.
+// normal to it; `diameter` sets the zone (d) and slice (d / 10) thicknesses. Over the particles
+// this rank owns, the profiles and counts summed over the ranks by `ranks`.
 BedSurface measure_bed_surface(const ParticleStore& particles, int axis, double floor, double area, double diameter,
-                               const BedSurfaceThresholds& thresholds);
+                               const BedSurfaceThresholds& thresholds, const RankReduce& ranks = {});
 
 }  // namespace grainflow::observe

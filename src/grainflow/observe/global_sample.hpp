@@ -2,6 +2,7 @@
 // about the mass-mean velocity) and the mass-centre height along the gravity axis.
 #pragma once
 
+#include "grainflow/observe/rank_reduce.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::observe {
@@ -15,6 +16,7 @@ struct GlobalSample {
   double mass = 0.0;                // kg of moving particles
 };
 
-GlobalSample sample_global(const ParticleStore& particles, int gravity_axis);
+// Over the moving particles this rank owns (ghosts left out), summed over the ranks by `ranks`.
+GlobalSample sample_global(const ParticleStore& particles, int gravity_axis, const RankReduce& ranks = {});
 
 }  // namespace grainflow::observe

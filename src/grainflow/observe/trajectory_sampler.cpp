@@ -31,6 +31,7 @@ void TrajectorySampler::observe(const ParticleStore& p, const PeriodicBox& box, 
 void TrajectorySampler::add(const ParticleStore& p, const PeriodicBox& box, double weight) {
   if (weight <= 0.0) return;
   for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.ghost.empty() && p.ghost[i]) continue;  // MPI: its owner counts it
     const auto id = p.id[i];
     if (id >= column_of_id_.size()) continue;
     const int k = column_of_id_[id];
@@ -45,6 +46,10 @@ void TrajectorySampler::add(const ParticleStore& p, const PeriodicBox& box, doub
 }
 
 void TrajectorySampler::finish_window() {
+  // MPI: each rank integrated the tracked particles it owned; a particle that changed ranks within
+  // the window has its integral in two parts.
+  ranks_.sum(velocity_sum_.data(), velocity_sum_.size());
+  ranks_.sum(position_sum_.data(), position_sum_.size());
   const double inverse = 1.0 / filled_;
   for (double& v : velocity_sum_) v *= inverse;
   for (double& x : position_sum_) x *= inverse;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "grainflow/core/periodic_box.hpp"
+#include "grainflow/observe/rank_reduce.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::observe {
@@ -26,6 +27,9 @@ class TrajectorySampler {
   // The state `p` holds the particles at time t1, the end of the step (t0, t1]; its velocities and
   // positions stand for the whole step.
   void observe(const ParticleStore& p, const PeriodicBox& box, double t0, double t1);
+  // MPI: each rank observes its own particles and the windows' integrals are summed over the
+  // ranks as each window closes (the sink then sees every particle on every rank).
+  void set_reduce(RankReduce ranks) { ranks_ = std::move(ranks); }
   bool done() const { return taken_ >= samples_; }
   long taken() const { return taken_; }
   const std::vector<std::uint32_t>& ids() const { return ids_; }
@@ -46,6 +50,7 @@ class TrajectorySampler {
   Sink sink_;
   std::vector<double> velocity_sum_, position_sum_;  // time integrals over the open window
   double filled_ = 0.0;                              // s of the open window covered so far
+  RankReduce ranks_;
 };
 
 }  // namespace grainflow::observe

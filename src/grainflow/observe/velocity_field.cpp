@@ -20,7 +20,7 @@ VelocityField::VelocityField(int horizontal_axis, int vertical_axis, double h_lo
 void VelocityField::sample(const ParticleStore& p, int bin) {
   std::vector<Sums>* binned = bin >= 0 && bin < bins_ ? &by_bin_[bin] : nullptr;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.motion[i] != Motion::free) continue;
+    if (!p.counted(i)) continue;
     const int col = static_cast<int>(std::floor((p.position[i][h_axis_] - h_lo_) / cell_));
     const int row = static_cast<int>(std::floor((p.position[i][v_axis_] - v_lo_) / cell_));
     if (col < 0 || col >= columns_ || row < 0 || row >= rows_) continue;
@@ -36,6 +36,19 @@ void VelocityField::sample(const ParticleStore& p, int bin) {
     }
   }
   ++samples_;
+}
+
+void VelocityField::sum_over_ranks(const RankReduce& ranks) {
+  auto sum = [&](std::vector<Sums>& sums) {
+    std::vector<double> flat;  // visits as doubles: exact below 2^53
+    flat.reserve(3 * sums.size());
+    for (const Sums& s : sums) flat.insert(flat.end(), {static_cast<double>(s.visits), s.h, s.v});
+    ranks.sum(flat.data(), flat.size());
+    for (std::size_t k = 0; k < sums.size(); ++k)
+      sums[k] = {static_cast<long>(std::llround(flat[3 * k])), flat[3 * k + 1], flat[3 * k + 2]};
+  };
+  sum(long_term_);
+  for (auto& bin : by_bin_) sum(bin);
 }
 
 std::vector<FieldCell> VelocityField::cells(int bin) const {

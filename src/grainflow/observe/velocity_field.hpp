@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "grainflow/observe/rank_reduce.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::observe {
@@ -28,6 +29,9 @@ class VelocityField {
                 int bins);
   // One sample; `bin` in [0, bins) or -1 for the long-term field only.
   void sample(const ParticleStore& particles, int bin);
+  // MPI: each rank sampled its own particles; this sums the cells over the ranks (once, before
+  // the field is read).
+  void sum_over_ranks(const RankReduce& ranks);
   std::vector<FieldCell> cells(int bin = -1) const;  // -1: long-term
   // Visit-weighted mean of the cells' mean speeds (Table 5.1's average convection velocity).
   double convection_speed() const;

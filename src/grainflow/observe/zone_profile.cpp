@@ -50,7 +50,7 @@ void ZoneProfile::fill_masses(const ParticleStore& p) {
 
 void ZoneProfile::reduce(std::vector<Sums>& sums) const {
   static_assert(sizeof(Sums) == 11 * sizeof(double), "Sums must be plain doubles to be summed over MPI ranks");
-  if (reduce_) reduce_(reinterpret_cast<double*>(sums.data()), sums.size() * 11);
+  reduce_.sum(reinterpret_cast<double*>(sums.data()), sums.size() * 11);
 }
 
 std::vector<Vec3> ZoneProfile::instantaneous_mean_velocity(const ParticleStore& p) {

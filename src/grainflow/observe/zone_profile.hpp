@@ -14,6 +14,7 @@
 
 #include "grainflow/observe/block_sums.hpp"
 #include "grainflow/observe/partial_volume.hpp"
+#include "grainflow/observe/rank_reduce.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::observe {
@@ -54,8 +55,7 @@ class ZoneProfile {
 
   // MPI: each rank samples its own particles and `reduce` sums each pass's zone sums over the
   // ranks (in place), so every rank holds the whole box's profile without gathering particles.
-  using Reduce = std::function<void(double* values, std::size_t count)>;
-  void set_reduce(Reduce reduce) { reduce_ = std::move(reduce); }
+  void set_reduce(RankReduce reduce) { reduce_ = std::move(reduce); }
 
   template <class Archive>
   void serialize(Archive& ar) {
@@ -79,7 +79,7 @@ class ZoneProfile {
 
   std::vector<Sums> sums_;
   std::vector<Sums> scratch_, fluctuations_;
-  Reduce reduce_;
+  RankReduce reduce_;
   void reduce(std::vector<Sums>& sums) const;
   long samples_ = 0;
   BlockSums<Sums> blocks_;  // for the error bars
