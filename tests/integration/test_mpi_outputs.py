@@ -19,17 +19,20 @@ Lan's bed (poured, then shaken; the short run of test_mpi_dem.py) with [trajecto
 Checkpoints on 2 ranks: a run stopped at 0.015 s and continued to 0.03 s ends with the same
 final_state.csv, timeseries.csv, tracers.csv and HDF5 datasets, byte for byte or bit for bit, as
 the unsplit run (each rank restores its own particles, ghosts, contact histories and cuts). A
-checkpoint of 2 ranks is refused on 1 rank (exit 2), naming the rank counts.
+checkpoint of 2 ranks is refused on 1 rank (exit 2), naming the rank counts. SIGTERM sent to mpirun
+stops both ranks at one step with a checkpoint, from which the run continues exactly.
 
 Usage: /usr/bin/python3 tests/integration/test_mpi_outputs.py PATH_TO_grainflow
 """
 import filecmp
-import math
+import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 
 import h5py
 import numpy
@@ -190,6 +193,32 @@ def main():
         check(status == 0, f"second half: exit {status}: {err[-2000:]}")
         same_files(whole, split, ["final_state.csv", "timeseries.csv", "profiles.csv", "tracers.csv",
                                   "convection.csv", "trajectory.h5", "zone_series.h5"])
+
+        # SIGTERM to mpirun (which passes it to the ranks): a checkpoint at the step the ranks agree
+        # on, exit status 143 on each rank, and a hint naming mpirun; continued, it ends where the
+        # unsplit run to the same time ends.
+        stopped = os.path.join(tmp, "stopped")
+        command = ["mpirun", "--oversubscribe", "-np", "2", exe, "run", case, "-o", stopped, "--quiet", *SHORT,
+                   "--set", "run.duration=20"]
+        process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=mpi_environment())
+        time.sleep(3.0)
+        process.send_signal(signal.SIGTERM)
+        _, err = process.communicate(timeout=120)
+        summary_path = os.path.join(stopped, "summary.json")
+        if check(os.path.exists(summary_path), f"SIGTERM on 2 ranks: no summary.json: {err[-1000:]}"):
+            summary = json.load(open(summary_path))
+            message = " ".join(summary["errors"])
+            check("interrupted by SIGTERM" in message and "continue with: mpirun -np 2 grainflow run" in message,
+                  f"SIGTERM on 2 ranks: errors {summary['errors']}")
+            check(summary["simulated_time"] < 20, "SIGTERM on 2 ranks: the run was not stopped")
+            end = f"{summary['simulated_time'] + 0.005:.6f}"
+            status, err = run_case(exe, 2, case, stopped, SHORT + ["--restart", os.path.join(stopped, "checkpoint.h5"),
+                                                                   "--set", f"run.duration={end}"])
+            check(status == 0, f"continued after SIGTERM: exit {status}: {err[-2000:]}")
+            unsplit = os.path.join(tmp, "unsplit")
+            status, err = run_case(exe, 2, case, unsplit, SHORT + ["--set", f"run.duration={end}"])
+            check(status == 0, f"unsplit run to {end} s: exit {status}: {err[-2000:]}")
+            same_files(unsplit, stopped, ["final_state.csv", "tracers.csv", "trajectory.h5"])
     return finish("test_mpi_outputs")
 
 

@@ -11,10 +11,16 @@ std::string checkpoint_folder(const std::string& checkpoint) {
   return folder.empty() ? "." : folder.string();
 }
 
+namespace {
+// How a run of `ranks` ranks is started again: a checkpoint continues on as many.
+std::string launcher(int ranks) { return ranks > 1 ? "mpirun -np " + std::to_string(ranks) + " " : ""; }
+}  // namespace
+
 std::string interrupted_message(int signal, double time, const std::string& unit, const CaseConfig& c,
                                 const std::string& dir) {
   return std::string("interrupted by ") + signal_name(signal) + " at t = " + std::to_string(time) + unit +
-         "; continue with: grainflow run " + c.path + " --restart " + dir + "/checkpoint.h5";
+         "; continue with: " + launcher(parallel::Communicator::world().size()) + "grainflow run " + c.path +
+         " --restart " + dir + "/checkpoint.h5";
 }
 
 io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles,
