@@ -1,5 +1,6 @@
 // Neighbor lists: the cell-grid search must find exactly the pairs of an all-pairs search (periodic
-// axes with 2 and with many cells, open faces with particles outside the box), the engine's list
+// axes with 2 and with many cells, open faces with particles outside the box, an MPI rank's region
+// of the box), the engine's list
 // must hold every overlapping pair at every step of a run with rebuilds and spatial re-sorting, and
 // contact history must survive rebuilds and re-orderings (DESIGN.md; STYLE.md items 5, 6, 8).
 #include <gtest/gtest.h>
@@ -257,6 +258,49 @@ TEST(NeighborList, CellGridFindsExactlyTheAllPairsSet) {
         NeighborPairs cells;
         grid.build_pairs(p, box, config.skin, threads, cells);
         EXPECT_EQ(pair_set(p, cells), expected) << config.name << ", seed " << seed << ", " << threads << " threads";
+      }
+    }
+  }
+}
+
+// An MPI rank's grid (CellGrid::setup_region): only its slab along x and the ghost layer of width w
+// on each side, the particles beyond a periodic face given at their positions in the box. The
+// pairs among the particles the rank holds must be exactly the all-images search's, with the
+// periodic images (shift codes) of the whole box: slabs in the middle, at either end of a periodic
+// axis (ghosts from across the face), and at the ends of an open axis (particles outside the box).
+TEST(NeighborList, ARanksRegionGridFindsTheWholeBoxPairsAmongItsParticles) {
+  const double max_radius = 0.0015, skin = 0.00045, w = 2.0 * max_radius + skin;
+  for (const bool periodic_x : {true, false}) {
+    const RandomConfig config{"slab", {0.0, 0.0, 0.0}, {0.06, 0.02, 0.015}, {periodic_x, false, true}, 1200,
+                              max_radius, skin, 0.004};
+    PeriodicBox box;
+    box.lo = config.lo;
+    box.hi = config.hi;
+    box.periodic = config.periodic;
+    const ParticleStore all = random_particles(config, box, 7);
+    for (const auto& [a, b] : {std::pair{0.02, 0.035}, std::pair{0.0, 0.018}, std::pair{0.041, 0.06}}) {
+      // The rank's particles: within w of [a, b] along x, through the periodic face if there is one.
+      std::vector<std::uint32_t> held;
+      for (std::size_t i = 0; i < all.size(); ++i) {
+        const double x = all.position[i].x;
+        double gap = std::max({a - x, x - b, 0.0});
+        if (periodic_x) gap = std::min({gap, std::max({a - (x - 0.06), x - 0.06 - b, 0.0}),
+                                        std::max({a - (x + 0.06), x + 0.06 - b, 0.0})});
+        if (!periodic_x && ((a == 0.0 && x < a) || (b == 0.06 && x > b))) gap = 0.0;  // end slabs reach on
+        if (gap < w) held.push_back(static_cast<std::uint32_t>(i));
+      }
+      ParticleStore p = all;
+      p.permute(held);
+      const std::set<PairKey> expected = brute_force(p, box, skin);
+      ASSERT_GT(expected.size(), 50u);
+      CellGrid grid;
+      grid.setup_region(box, {a - w, 0.0, 0.0}, {b + w, 0.0, 0.0}, {true, false, false}, w, p.size());
+      grid.bin(p.position);
+      for (int threads : {1, 2}) {
+        NeighborPairs cells;
+        grid.build_pairs(p, box, skin, threads, cells);
+        EXPECT_EQ(pair_set(p, cells), expected)
+            << "slab [" << a << ", " << b << "], periodic x " << periodic_x << ", " << threads << " threads";
       }
     }
   }

@@ -57,10 +57,12 @@ class DemEngine {
     }
     double max_radius = 0.0;
     for (double r : s_.particles.target_radius) max_radius = std::max(max_radius, r);
-    grid_.setup(s_.box, 2.0 * max_radius + s_.skin, s_.particles.size());
+    cell_size_ = 2.0 * max_radius + s_.skin;
+    grid_.setup(s_.box, cell_size_, s_.particles.size());
     if (domain != nullptr && domain->comm->size() > 1) {
       domain_ = std::make_unique<DomainExchange<State>>(*domain->comm, domain->slabs);
       domain_->keep_owned(s_.particles, contacts_);
+      rank_ = domain->comm->rank();
     }
     for (auto& wall : s_.walls) wall.move_to(s_.time);
     rebuild(true);
@@ -222,7 +224,10 @@ class DemEngine {
     if (!first) kept = contacts_.take_touching(pairs_, p.id);
     const std::size_t expected_pairs = pairs_.pair_count();
     pairs_ = NeighborPairs{};
-    if (domain_) domain_->redistribute(p, contacts_, kept);  // MPI: particles change ranks, ghosts renewed
+    if (domain_) {
+      domain_->redistribute(p, contacts_, kept);  // MPI: particles change ranks, ghosts renewed
+      fit_grid_to_domain();
+    }
     grid_.bin(p.position);
     const bool sort_now = sort_every_ > 0 && (first || ++rebuilds_since_sort_ >= sort_every_);
     if (sort_now) {
@@ -237,6 +242,21 @@ class DemEngine {
     contacts_.restore(kept, pairs_, p.id);
     position_at_build_ = p.position;
     ++stats_.rebuilds;
+  }
+
+  // MPI: the cells cover this rank's slab and its ghost layer only, so that they scale with the
+  // rank's particles (the cuts move at a rebalance, so after each exchange). Along a periodic
+  // axis the slab and its layers may cover the box; then the grid spans and wraps it as on one rank.
+  void fit_grid_to_domain() {
+    const SlabDecomposition& d = domain_->slabs();
+    const int a = d.axis;
+    Vec3 lo = s_.box.lo, hi = s_.box.hi;
+    lo[a] = d.bounds[rank_] - d.ghost_width;
+    hi[a] = d.bounds[rank_ + 1] + d.ghost_width;
+    std::array<bool, 3> cut{};
+    cut[a] = !s_.box.periodic[a] || hi[a] - lo[a] + 2.0 * cell_size_ < s_.box.length(a);
+    if (!cut[a]) lo[a] = s_.box.lo[a], hi[a] = s_.box.hi[a];
+    grid_.setup_region(s_.box, lo, hi, cut, cell_size_, s_.particles.size());
   }
 
   void pair_forces(double dt) {
@@ -383,6 +403,8 @@ class DemEngine {
   int sort_every_;
   int rebuilds_since_sort_ = 0;
   CellGrid grid_;
+  double cell_size_ = 0.0;  // m: 2 r_max + skin, the reach of a list
+  int rank_ = 0;            // MPI: this rank
   NeighborPairs pairs_;
   ContactStore<State> contacts_;
   std::vector<Vec3> position_at_build_;

@@ -12,16 +12,27 @@
 namespace grainflow::dem {
 
 void CellGrid::setup(const PeriodicBox& box, double cell_size, std::size_t particles) {
+  setup_region(box, box.lo, box.hi, {false, false, false}, cell_size, particles);
+}
+
+void CellGrid::setup_region(const PeriodicBox& box, const Vec3& lo, const Vec3& hi, const std::array<bool, 3>& cut,
+                            double cell_size, std::size_t particles) {
   box_ = box;
-  const std::array<double, 3> lengths{box.length(0), box.length(1), box.length(2)};
+  std::array<double, 3> lengths{};
+  for (int axis = 0; axis < 3; ++axis) {
+    lo_[axis] = cut[axis] ? lo[axis] : box.lo[axis];
+    lengths[axis] = cut[axis] ? hi[axis] - lo[axis] : box.length(axis);
+    wraps_[axis] = box.periodic[axis] && !cut[axis];
+    framed_[axis] = box.periodic[axis] && cut[axis];
+  }
   cells_ = cell_counts(lengths, 3, cell_size, 1 << 12, std::max(32768.0, 4.0 * static_cast<double>(particles)));
-  for (int axis = 0; axis < 3; ++axis) inv_size_[axis] = cells_[axis] / box.length(axis);
+  for (int axis = 0; axis < 3; ++axis) inv_size_[axis] = cells_[axis] / lengths[axis];
 }
 
 int CellGrid::cell_of(const Vec3& x) const {
   int c[3];
   for (int axis = 0; axis < 3; ++axis) {
-    int k = static_cast<int>(std::floor((x[axis] - box_.lo[axis]) * inv_size_[axis]));
+    int k = static_cast<int>(std::floor((x[axis] - lo_[axis]) * inv_size_[axis]));
     c[axis] = std::clamp(k, 0, cells_[axis] - 1);
   }
   return c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
@@ -30,16 +41,94 @@ int CellGrid::cell_of(const Vec3& x) const {
 void CellGrid::bin(const std::vector<Vec3>& position) {
   const std::size_t n = position.size();
   const std::size_t total = static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2];
+  const bool framed = framed_[0] || framed_[1] || framed_[2];
+  frame_.assign(framed ? n : 0, {0, 0, 0});
   start_.assign(total + 1, 0);
   cell_index_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    cell_index_[i] = cell_of(position[i]);
+    Vec3 x = position[i];
+    if (framed)
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!framed_[axis]) continue;
+        // The image nearest the region: its centre is within half a box length of it.
+        const double length = box_.length(axis);
+        const double centre = lo_[axis] + 0.5 * cells_[axis] / inv_size_[axis];
+        const int k = static_cast<int>(std::nearbyint((centre - x[axis]) / length));
+        frame_[i][axis] = static_cast<std::int8_t>(std::clamp(k, -1, 1));
+        x[axis] += frame_[i][axis] * length;
+      }
+    cell_index_[i] = cell_of(x);
     ++start_[cell_index_[i] + 1];
   }
   for (std::size_t c = 0; c < total; ++c) start_[c + 1] += start_[c];
   order_.resize(n);
   std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
   for (std::size_t i = 0; i < n; ++i) order_[fill[cell_index_[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+// Pairs of particles [begin, end) with partners of a higher id in the 27 cells around each. Framed:
+// along cut periodic axes the particles sit at their images frame_[i] inside the region, and a
+// pair's shift code adds the difference of the two images.
+template <bool Framed>
+void CellGrid::search(const ParticleStore& p, const PeriodicBox& box, double skin, std::size_t begin, std::size_t end,
+                      std::vector<std::uint32_t>& my_partners, std::vector<std::uint8_t>& my_codes,
+                      std::vector<std::uint32_t>& my_counts) const {
+  const Vec3 length{box.length(0), box.length(1), box.length(2)};
+  for (std::size_t i = begin; i < end; ++i) {
+    const int cell = cell_index_[i];
+    const int ci[3] = {cell % cells_[0], (cell / cells_[0]) % cells_[1], cell / (cells_[0] * cells_[1])};
+    Vec3 xi = p.position[i];
+    if constexpr (Framed)
+      for (int a = 0; a < 3; ++a) xi[a] += frame_[i][a] * length[a];
+    const double ri = p.target_radius[i] + skin;
+    const std::uint32_t idi = p.id[i];
+    const std::size_t before = my_partners.size();
+    for (int dz = -1; dz <= 1; ++dz) {
+      int cz = ci[2] + dz, sz = 0;
+      if (cz < 0 || cz >= cells_[2]) {
+        if (!wraps_[2]) continue;
+        sz = cz < 0 ? -1 : 1;
+        cz -= sz * cells_[2];
+      }
+      for (int dy = -1; dy <= 1; ++dy) {
+        int cy = ci[1] + dy, sy = 0;
+        if (cy < 0 || cy >= cells_[1]) {
+          if (!wraps_[1]) continue;
+          sy = cy < 0 ? -1 : 1;
+          cy -= sy * cells_[1];
+        }
+        for (int dx = -1; dx <= 1; ++dx) {
+          int cx = ci[0] + dx, sx = 0;
+          if (cx < 0 || cx >= cells_[0]) {
+            if (!wraps_[0]) continue;
+            sx = cx < 0 ? -1 : 1;
+            cx -= sx * cells_[0];
+          }
+          const Vec3 shift{sx * length[0], sy * length[1], sz * length[2]};
+          const std::uint8_t code = PeriodicBox::shift_code(sx, sy, sz);
+          const int neighbor = cx + cells_[0] * (cy + cells_[1] * cz);
+          for (std::uint32_t k = start_[neighbor]; k < start_[neighbor + 1]; ++k) {
+            const std::uint32_t j = order_[k];
+            if (p.id[j] <= idi || !pair_interacts(p, i, j)) continue;
+            Vec3 xj = p.position[j] + shift;
+            if constexpr (Framed)
+              for (int a = 0; a < 3; ++a) xj[a] += frame_[j][a] * length[a];
+            const Vec3 d = xi - xj;
+            const double cutoff = ri + p.target_radius[j];
+            if (norm2(d) < cutoff * cutoff) {
+              my_partners.push_back(j);
+              if constexpr (Framed)  // x_i - x_j at the images = x_i - (x_j + (s + f_j - f_i) L)
+                my_codes.push_back(PeriodicBox::shift_code(sx + frame_[j][0] - frame_[i][0], sy + frame_[j][1] - frame_[i][1],
+                                                           sz + frame_[j][2] - frame_[i][2]));
+              else
+                my_codes.push_back(code);
+            }
+          }
+        }
+      }
+    }
+    my_counts[i - begin] = static_cast<std::uint32_t>(my_partners.size() - before);
+  }
 }
 
 void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, double skin, int threads,
@@ -63,52 +152,8 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
     my_counts.assign(end - begin, 0);
     my_partners.reserve(expected_pairs / threads + expected_pairs / threads / 16);  // + 6 %: lists vary
     my_codes.reserve(my_partners.capacity());
-    for (std::size_t i = begin; i < end; ++i) {
-      const int cell = cell_index_[i];
-      const int ci[3] = {cell % cells_[0], (cell / cells_[0]) % cells_[1], cell / (cells_[0] * cells_[1])};
-      const Vec3 xi = p.position[i];
-      const double ri = p.target_radius[i] + skin;
-      const std::uint32_t idi = p.id[i];
-      const std::size_t before = my_partners.size();
-      for (int dz = -1; dz <= 1; ++dz) {
-        int cz = ci[2] + dz, sz = 0;
-        if (cz < 0 || cz >= cells_[2]) {
-          if (!box.periodic[2]) continue;
-          sz = cz < 0 ? -1 : 1;
-          cz -= sz * cells_[2];
-        }
-        for (int dy = -1; dy <= 1; ++dy) {
-          int cy = ci[1] + dy, sy = 0;
-          if (cy < 0 || cy >= cells_[1]) {
-            if (!box.periodic[1]) continue;
-            sy = cy < 0 ? -1 : 1;
-            cy -= sy * cells_[1];
-          }
-          for (int dx = -1; dx <= 1; ++dx) {
-            int cx = ci[0] + dx, sx = 0;
-            if (cx < 0 || cx >= cells_[0]) {
-              if (!box.periodic[0]) continue;
-              sx = cx < 0 ? -1 : 1;
-              cx -= sx * cells_[0];
-            }
-            const Vec3 shift{sx * box.length(0), sy * box.length(1), sz * box.length(2)};
-            const std::uint8_t code = PeriodicBox::shift_code(sx, sy, sz);
-            const int neighbor = cx + cells_[0] * (cy + cells_[1] * cz);
-            for (std::uint32_t k = start_[neighbor]; k < start_[neighbor + 1]; ++k) {
-              const std::uint32_t j = order_[k];
-              if (p.id[j] <= idi || !pair_interacts(p, i, j)) continue;
-              const Vec3 d = xi - (p.position[j] + shift);
-              const double cutoff = ri + p.target_radius[j];
-              if (norm2(d) < cutoff * cutoff) {
-                my_partners.push_back(j);
-                my_codes.push_back(code);
-              }
-            }
-          }
-        }
-      }
-      my_counts[i - begin] = static_cast<std::uint32_t>(my_partners.size() - before);
-    }
+    if (frame_.empty()) search<false>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
+    else search<true>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
   }
 
   out.offsets.assign(n + 1, 0);

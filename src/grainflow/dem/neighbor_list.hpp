@@ -3,6 +3,7 @@
 // by the all-pairs reference search used in tests. Pairs of two non-moving particles are skipped.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -30,6 +31,13 @@ class CellGrid {
   // Cells at least `cell_size` wide; wider where the box would otherwise need more than
   // max(32768, 4 x `particles`) of them.
   void setup(const PeriodicBox& box, double cell_size, std::size_t particles);
+  // A grid over part of the box only: an MPI rank's sub-domain widened by its ghost layer, so that
+  // a rank's cells scale with its particles, not with the whole box. Along the axes in `cut` the
+  // grid spans [lo, hi] and does not wrap; a particle there (a ghost from across a periodic face)
+  // is binned at its periodic image inside [lo, hi], and its pairs carry that image in their
+  // shift codes, so the forces see the same separations as on one rank.
+  void setup_region(const PeriodicBox& box, const Vec3& lo, const Vec3& hi, const std::array<bool, 3>& cut,
+                    double cell_size, std::size_t particles);
   void bin(const std::vector<Vec3>& position);
   const std::vector<std::uint32_t>& cell_order() const { return order_; }
   // `expected_pairs` (the last list's length, or 0) sizes the per-thread buffers up front, so that
@@ -39,7 +47,15 @@ class CellGrid {
 
  private:
   int cell_of(const Vec3& x) const;
+  template <bool Framed>
+  void search(const ParticleStore& p, const PeriodicBox& box, double skin, std::size_t begin, std::size_t end,
+              std::vector<std::uint32_t>& partners, std::vector<std::uint8_t>& codes,
+              std::vector<std::uint32_t>& counts) const;
   PeriodicBox box_;
+  Vec3 lo_;                               // the grid's origin (the box's, or the region's)
+  std::array<bool, 3> wraps_{};           // periodic and not cut: neighbour cells wrap around
+  std::array<bool, 3> framed_{};          // periodic and cut: particles binned at an image
+  std::vector<std::array<std::int8_t, 3>> frame_;  // each particle's image along the framed axes
   std::array<int, 3> cells_{1, 1, 1};
   Vec3 inv_size_;
   std::vector<std::uint32_t> start_;  // CSR over cells
