@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 #include "grainflow/core/error.hpp"
 
@@ -23,37 +24,60 @@ dem::SlabDecomposition dem_slabs(const dem::DemState& initial, int ranks) {
   return dem::SlabDecomposition::balanced(initial.particles.position, initial.box, initial.gravity, ranks, reach);
 }
 
-void gather_view(const dem::DemState& local, const parallel::Communicator& comm, dem::DemState& view) {
-  const ParticleStore& p = local.particles;
+namespace {
+// What final_state.csv and a checkpoint's /particles datasets read of a particle: 97 bytes of the
+// store's 184, so that rank 0's peak memory at the gather stays below a serial run's.
+struct OutputRecord {
+  Vec3 position, velocity, angular_velocity;
+  double radius, target_radius;
+  std::int32_t species;
+  std::uint32_t id;
+  Motion motion;
+};
+}  // namespace
+
+ParticleStore gather_particles(const ParticleStore& p, const parallel::Communicator& comm) {
   std::vector<std::uint8_t> mine;
+  mine.reserve(p.size() * sizeof(OutputRecord));
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.ghost[i]) continue;
-    const ParticleStore::Record r = p.record(i);
+    const OutputRecord r{p.position[i], p.velocity[i], p.angular_velocity[i], p.radius[i], p.target_radius[i],
+                         p.species[i], p.id[i], p.motion[i]};
     const auto* bytes = reinterpret_cast<const std::uint8_t*>(&r);
     mine.insert(mine.end(), bytes, bytes + sizeof r);
   }
-  const auto all = comm.gather(mine);
-  view.box = local.box;
-  view.gravity = local.gravity;
-  view.time = local.time;
-  view.time_step = local.time_step;
-  view.step = local.step;
-  view.skin = local.skin;
-  view.walls = local.walls;
-  view.bump_velocity = local.bump_velocity;
-  view.bump_displacement = local.bump_displacement;
-  view.expansion_rate = local.expansion_rate;
-  view.species = local.species;
-  std::vector<ParticleStore::Record> records;
-  for (const auto& from : all)
-    for (std::size_t at = 0; at + sizeof(ParticleStore::Record) <= from.size(); at += sizeof(ParticleStore::Record)) {
-      ParticleStore::Record r;
+  auto all = comm.gather(mine);
+  std::vector<std::uint8_t>().swap(mine);
+  ParticleStore out;
+  if (!comm.root()) return out;
+  std::size_t n = 0;
+  for (const auto& from : all) n += from.size() / sizeof(OutputRecord);
+  out.position.resize(n);
+  out.velocity.resize(n);
+  out.angular_velocity.resize(n);
+  out.radius.resize(n);
+  out.target_radius.resize(n);
+  out.species.resize(n);
+  out.id.resize(n);
+  out.motion.resize(n);
+  // Ids are 0 .. n-1 (dem::build_dem_state numbers every particle once), so each lands at its id.
+  for (auto& from : all) {
+    for (std::size_t at = 0; at + sizeof(OutputRecord) <= from.size(); at += sizeof(OutputRecord)) {
+      OutputRecord r;
       std::memcpy(&r, from.data() + at, sizeof r);
-      records.push_back(r);
+      if (r.id >= n) throw std::logic_error("gather_particles: particle ids are not 0 .. n-1");
+      out.position[r.id] = r.position;
+      out.velocity[r.id] = r.velocity;
+      out.angular_velocity[r.id] = r.angular_velocity;
+      out.radius[r.id] = r.radius;
+      out.target_radius[r.id] = r.target_radius;
+      out.species[r.id] = r.species;
+      out.id[r.id] = r.id;
+      out.motion[r.id] = r.motion;
     }
-  std::sort(records.begin(), records.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
-  view.particles = ParticleStore{};
-  for (const auto& r : records) view.particles.push_back(r);
+    std::vector<std::uint8_t>().swap(from);
+  }
+  return out;
 }
 
 std::string fault_on_any_rank(const std::string& mine, const parallel::Communicator& comm) {

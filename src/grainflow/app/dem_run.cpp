@@ -196,10 +196,10 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
 
   // All particles on rank 0 (for final_state.csv and a checkpoint's datasets); the engine's own on
   // one rank.
-  dem::DemState gathered;
-  auto view = [&](auto& e) -> const dem::DemState& {
-    if (!ranks) return e.state();
-    gather_view(e.state(), comm, gathered);
+  ParticleStore gathered;
+  auto all_particles = [&](auto& e) -> const ParticleStore& {
+    if (!ranks) return e.state().particles;
+    gathered = gather_particles(e.state().particles, comm);
     return gathered;
   };
   // The run's whole state, one function for both directions (checkpoint and restart).
@@ -219,8 +219,9 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   auto checkpoint = [&](auto& e) {
     if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
     if (zone_series) zone_series->copy_stream(dir + "/checkpoint_zone_series.h5");
-    write_run_checkpoint(dir, c, view(e).particles, e.state().time, e.state().step,
+    write_run_checkpoint(dir, c, all_particles(e), e.state().time, e.state().step,
                          [&](io::StateArchive& ar) { transfer(ar, e); }, comm);
+    gathered = ParticleStore{};
   };
   int interrupted = 0;
   bool stopped_together = false;  // MPI: a failure every rank saw at the same output time
@@ -346,18 +347,20 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
 
   std::visit(
       [&](auto& e) {
-        const auto& st = view(e);
+        const auto& st = e.state();
+        const ParticleStore& everyone = all_particles(e);  // rank 0: every rank's, for final_state.csv
+        long long moving = 0;
+        for (std::size_t i = 0; i < st.particles.size(); ++i) moving += st.particles.counted(i);
+        moving = ranks ? comm.sum(moving) : moving;
+        const auto global = observe::sample_global(st.particles, axis, rank_reduce);
         const long long migrations = e.domain() ? comm.sum(e.domain()->migrated()) : 0;
         const long long ghosts = e.domain() ? comm.sum(e.domain()->ghosts()) : 0;
         if (field && ranks) field->field->sum_over_ranks(rank_reduce);
         if (tracers) tracers->write(dir + "/tracers.csv", comm);  // collective: rank 0 writes
         if (!writes) return;  // rank 0 writes the run's other files
-        long moving = 0;
-        for (std::size_t i = 0; i < st.particles.size(); ++i) moving += st.particles.motion[i] == Motion::free;
-        const auto global = observe::sample_global(st.particles, axis);
         write_timeseries(dir + "/timeseries.csv", rows);
         write_profiles(dir + "/profiles.csv", profile, derived.reference_diameter, derived.gravity_magnitude);
-        write_final_state(dir + "/final_state.csv", st.particles, st.species);
+        write_final_state(dir + "/final_state.csv", everyone, st.species);
         if (field) field->write(dir, c);
 
         double mean_temperature = 0.0;
@@ -371,7 +374,7 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         summary.string("engine", "dem");
         summary.integer("dimension", 3);
         summary.integer("particles", moving);
-        summary.integer("fixed_particles", static_cast<long long>(st.particles.size()) - moving);
+        summary.integer("fixed_particles", particle_count - moving);
         summary.string("case", c.path);
         summary.string("case_overrides", join_overrides(c.overrides));
         summary.string("version", kVersion);
