@@ -26,7 +26,7 @@ for ranks in 1 2 4; do
     --set particles.init=lattice --set particles.lattice_spacing=1.0 --set particles.initial_temperature=0.01 \
     --set "particles.region_hi=[$side,0.05,$side]" --set particles.expansion_time=0 --set drive.start=0 --set drive.ramp=0 \
     --set run.duration=0.000237 --set output.interval=0.000237 --set output.snapshot_interval=0 \
-    --set output.average_start=1 >/dev/null  # no profile samples: each would gather every particle on rank 0
+    --set output.average_start=1 >/dev/null  # no profile samples: the engine alone
   /usr/bin/python3 -c "
 import json; s = json.load(open('$out/run/summary.json'))
 print(f\"{$ranks:<6} {$n:<9} {s['particle_steps_per_second']:16.4g} {s.get('mpi_ghosts', 0):10d} {s.get('mpi_migrations', 0):12d}\")"
