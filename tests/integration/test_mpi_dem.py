@@ -12,8 +12,10 @@ case files and outputs of a serial run.
 - A longer run on 1 and 2 ranks gives statistically identical profiles: each zone's solids fraction
   and granular temperature agree within 4 combined standard errors (block averages; chaos makes the
   two runs independent samples after ~0.05 s).
-- The same holds with walls at the ends of the slab axis (the end ranks own the wall contacts),
-  and with two OpenMP threads inside each of two ranks.
+- The same holds with walls at the ends of the cut axis (the end ranks own the wall contacts), with
+  walls on all four sides on 4 ranks (a 2 x 2 grid of columns: particles cross the sub-domains'
+  edges and corners, and ghosts go to diagonal neighbours), and with two OpenMP threads inside each
+  of two ranks.
 - A fault all ranks see at an output time stops them together, with the outputs written.
 - The sampled outputs, snapshots and checkpoints on several ranks: test_mpi_outputs.py.
 
@@ -98,13 +100,24 @@ def main():
                 for key in ("contacts", "wall_contacts", "collisions", "wall_collisions", "neighbor_rebuilds"):
                     check(a[key] == b[key], f"{ranks} ranks, t = {a['time']}: {key} {b[key]}, one rank {a[key]}")
 
-        # Walls across the slab axis, and threads inside the ranks: the same state as one rank.
+        # Walls across the cut axis; walls on all four sides, where 4 ranks take a 2 x 2 grid of
+        # columns (2 cut planes against 3 for slabs), so that particles cross edges and corners of
+        # sub-domains; threads inside the ranks: the same state as one rank.
         walled = SHORT + ["--set", 'domain.boundary.x="wall"']
-        for ranks, threads, args, label in ((1, 1, walled, "walls_1"), (2, 1, walled, "walls_2"), (2, 2, SHORT, "threads")):
+        boxed = SHORT + ["--set", 'domain.boundary.x="wall"', "--set", 'domain.boundary.z="wall"',  # a base 10 d
+                         "--set", "domain.hi=[0.03,0.08,0.03]", "--set", "particles.region_hi=[0.03,0.05,0.03]"]  # square
+        for ranks, threads, args, label in ((1, 1, walled, "walls_1"), (2, 1, walled, "walls_2"), (1, 1, boxed, "boxed_1"),
+                                            (4, 1, boxed, "boxed_4"), (2, 2, SHORT, "threads")):
             out[label] = os.path.join(tmp, label)
             status, err = run_ranks(exe, ranks, out[label], args, threads=threads)
             check(status == 0, f"{label}: exit {status}: {err[-2000:]}")
-        for reference, label in (("walls_1", "walls_2"), (1, "threads")):
+        boxed_summary = json.load(open(os.path.join(out["boxed_4"], "summary.json")))
+        check(boxed_summary.get("mpi_grid") == "2x1x2",
+              f"4 ranks in a walled box: grid {boxed_summary.get('mpi_grid')}, expected 2x1x2 (columns)")
+        check(boxed_summary.get("mpi_migrations", 0) > 0 and boxed_summary.get("mpi_ghosts", 0) > 0,
+              f"4 ranks in a walled box: {boxed_summary.get('mpi_migrations')} migrations, "
+              f"{boxed_summary.get('mpi_ghosts')} ghosts: the comparison would not cover the exchange")
+        for reference, label in (("walls_1", "walls_2"), ("boxed_1", "boxed_4"), (1, "threads")):
             a = states(os.path.join(out[reference], "final_state.csv"))
             b = states(os.path.join(out[label], "final_state.csv"))
             if check(sorted(a) == sorted(b), f"{label}: other particles than one rank's"):

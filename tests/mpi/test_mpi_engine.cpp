@@ -83,7 +83,7 @@ TEST(MpiEngine, ANonFiniteStateOnOneRankStopsEveryRankAtTheSameStep) {
   const fs::path folder = shared_folder("engine");
   const CaseConfig c = resting_case(folder);
   dem::DemState initial = dem::build_dem_state(c);
-  const dem::EngineDomain domain{&comm(), app::dem_slabs(initial, comm().size())};
+  const dem::EngineDomain domain{&comm(), app::dem_grid(initial, comm().size())};
   dem::DemEngineVariant engine = dem::make_engine(c, std::move(initial), 1, &domain);
   std::visit(
       [&](auto& e) {

@@ -14,8 +14,9 @@ namespace grainflow::app {
 // Sums and maxima over the ranks for the observers (the identity on one rank).
 observe::RankReduce over_ranks(const parallel::Communicator& comm);
 
-// The slabs for `ranks` ranks over the initial state, with ghosts as far out as a list reaches.
-dem::SlabDecomposition dem_slabs(const dem::DemState& initial, int ranks);
+// The grid of sub-domains for `ranks` ranks over the initial state, with ghosts as far out as a
+// neighbour list reaches.
+dem::DomainDecomposition dem_grid(const dem::DemState& initial, int ranks);
 
 // Rank 0: every rank's own particles in id order, with the fields final_state.csv and a
 // checkpoint's datasets read (position, velocity, spin, radii, species, id, motion; the store's

@@ -176,9 +176,9 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   std::optional<TracerOutput> tracers;
   if (c.tracers.enabled) tracers.emplace(c, derived, initial.particles);
 
-  // Under mpirun with several ranks each rank integrates a slab (dem/domain_exchange.hpp).
+  // Under mpirun with several ranks each rank integrates one box of a grid (dem/domain_exchange.hpp).
   std::optional<dem::EngineDomain> domain;
-  if (ranks) domain = dem::EngineDomain{&comm, dem_slabs(initial, comm.size())};
+  if (ranks) domain = dem::EngineDomain{&comm, dem_grid(initial, comm.size())};
   dem::DemEngineVariant engine = dem::make_engine(c, std::move(initial), options.threads, domain ? &*domain : nullptr);
 
   const observe::BedSurfaceThresholds bed_thresholds{c.output.bed_gap_fraction, c.output.bed_surface_fraction};
@@ -386,14 +386,19 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
         summary.integer("threads", options.threads);
         summary.integer("mpi_ranks", comm.size());
         if (e.domain()) {  // the decomposition, and how much crossed it
-          summary.integer("mpi_slab_axis", e.domain()->slabs().axis);
+          const auto& grid = e.domain()->grid();
+          summary.string("mpi_grid", std::to_string(grid.shape[0]) + "x" + std::to_string(grid.shape[1]) + "x" +
+                                         std::to_string(grid.shape[2]));
           summary.integer("mpi_migrations", migrations);
           summary.integer("mpi_ghosts", ghosts);
           summary.integer("mpi_rebalances", e.domain()->rebalances());
-          const auto& cuts = e.domain()->slabs().bounds;
-          summary.string("mpi_slab_bounds", [&] {
+          summary.string("mpi_bounds", [&] {  // the final cuts along each cut axis
             std::string text;
-            for (double b : cuts) text += (text.empty() ? "" : " ") + std::to_string(b);
+            for (int a = 0; a < 3; ++a) {
+              if (!grid.cut(a)) continue;
+              text += std::string(text.empty() ? "" : "; ") + "xyz"[a] + ":";
+              for (double b : grid.bounds[a]) text += " " + std::to_string(b);
+            }
             return text;
           }());
         }

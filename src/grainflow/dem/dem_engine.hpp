@@ -60,7 +60,7 @@ class DemEngine {
     cell_size_ = 2.0 * max_radius + s_.skin;
     grid_.setup(s_.box, cell_size_, s_.particles.size());
     if (domain != nullptr && domain->comm->size() > 1) {
-      domain_ = std::make_unique<DomainExchange<State>>(*domain->comm, domain->slabs);
+      domain_ = std::make_unique<DomainExchange<State>>(*domain->comm, domain->grid);
       domain_->keep_owned(s_.particles, contacts_);
       rank_ = domain->comm->rank();
     }
@@ -244,18 +244,20 @@ class DemEngine {
     ++stats_.rebuilds;
   }
 
-  // MPI: the cells cover this rank's slab and its ghost layer only, so that they scale with the
-  // rank's particles (the cuts move at a rebalance, so after each exchange). Along a periodic
-  // axis the slab and its layers may cover the box; then the grid spans and wraps it as on one rank.
+  // MPI: the cells cover this rank's box and its ghost layer only, so that they scale with the
+  // rank's particles (the cuts move at a rebalance, so after each exchange). Along a periodic axis
+  // whose box and layers would cover the whole length the grid spans and wraps it as on one rank.
   void fit_grid_to_domain() {
-    const SlabDecomposition& d = domain_->slabs();
-    const int a = d.axis;
+    const DomainDecomposition& d = domain_->grid();
+    const Vec3 box_lo = d.lower(rank_), box_hi = d.upper(rank_);
     Vec3 lo = s_.box.lo, hi = s_.box.hi;
-    lo[a] = d.bounds[rank_] - d.ghost_width;
-    hi[a] = d.bounds[rank_ + 1] + d.ghost_width;
     std::array<bool, 3> cut{};
-    cut[a] = !s_.box.periodic[a] || hi[a] - lo[a] + 2.0 * cell_size_ < s_.box.length(a);
-    if (!cut[a]) lo[a] = s_.box.lo[a], hi[a] = s_.box.hi[a];
+    for (int a = 0; a < 3; ++a) {
+      if (!d.cut(a)) continue;
+      const double from = box_lo[a] - d.ghost_width, to = box_hi[a] + d.ghost_width;
+      cut[a] = !s_.box.periodic[a] || to - from + 2.0 * cell_size_ < s_.box.length(a);
+      if (cut[a]) lo[a] = from, hi[a] = to;
+    }
     grid_.setup_region(s_.box, lo, hi, cut, cell_size_, s_.particles.size());
   }
 

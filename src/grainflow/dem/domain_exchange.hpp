@@ -1,11 +1,12 @@
-// The soft-sphere engine on several MPI ranks: each rank integrates the particles in its slab
-// (dem/slab_decomposition.hpp) and holds copies ("ghosts") of the other ranks' particles within
-// reach of it, refreshed from their owners every step, so that every pair with an owned particle
-// is evaluated exactly as on one rank. A pair across a slab boundary is evaluated on both ranks,
+// The soft-sphere engine on several MPI ranks: each rank integrates the particles in its box of
+// the grid (dem/domain_decomposition.hpp) and holds copies ("ghosts") of the other ranks' particles
+// within reach of it, refreshed from their owners every step, so that every pair with an owned
+// particle is evaluated exactly as on one rank. Messages go to the neighbouring ranks only (those
+// whose boxes lie within reach), point to point. A pair across a boundary is evaluated on both ranks,
 // in the same orientation (lower id first) from the same numbers, so both keep the same contact
 // history bit for bit; only the sums of forces differ in order, by round-off.
 //
-// At a neighbour-list rebuild a particle that left the slab goes to its new owner with its wall
+// At a neighbour-list rebuild a particle that left the box goes to its new owner with its wall
 // contact states and the states of its touching pairs, which only its owner is sure to have
 // followed from the contact's start (a copy may have arrived mid-contact).
 #pragma once
@@ -17,7 +18,7 @@
 #include <vector>
 
 #include "grainflow/dem/contact_store.hpp"
-#include "grainflow/dem/slab_decomposition.hpp"
+#include "grainflow/dem/domain_decomposition.hpp"
 #include "grainflow/parallel/communicator.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
@@ -44,7 +45,7 @@ T take(const std::vector<std::uint8_t>& in, std::size_t& cursor) {
 // What an engine needs to run as one of several ranks.
 struct EngineDomain {
   const parallel::Communicator* comm = nullptr;
-  SlabDecomposition slabs;
+  DomainDecomposition grid;
 };
 
 template <class State>
@@ -52,9 +53,11 @@ class DomainExchange {
  public:
   using KeptPair = typename ContactStore<State>::KeptPair;
 
-  DomainExchange(const parallel::Communicator& comm, SlabDecomposition slabs) : comm_(comm), slabs_(std::move(slabs)) {}
+  DomainExchange(const parallel::Communicator& comm, DomainDecomposition grid)
+      : comm_(comm), grid_(std::move(grid)), neighbours_(grid_.neighbours(comm.rank())) {}
 
-  const SlabDecomposition& slabs() const { return slabs_; }
+  const DomainDecomposition& grid() const { return grid_; }
+  const std::vector<int>& neighbours() const { return neighbours_; }
   long long migrated() const { return migrated_; }  // particles this rank sent to another owner
   long long rebalances() const { return rebalances_; }
   long long ghosts() const {                        // copies this rank holds now
@@ -66,14 +69,14 @@ class DomainExchange {
 
   template <class Archive>  // checkpoints: this rank's cuts, counters and ghost bookkeeping
   void serialize(Archive& ar) {
-    ar(slabs_, migrated_, rebuilds_, rebalances_, send_ids_, receive_ids_, send_index_, receive_index_);
+    ar(grid_, neighbours_, migrated_, rebuilds_, rebalances_, send_ids_, receive_ids_, send_index_, receive_index_);
   }
 
   // The start: every rank built the same whole initial state; each keeps the particles in its slab.
   void keep_owned(ParticleStore& p, ContactStore<State>& contacts) const {
     std::vector<std::uint32_t> mine;
     for (std::size_t i = 0; i < p.size(); ++i)
-      if (slabs_.owner(p.position[i]) == comm_.rank()) mine.push_back(static_cast<std::uint32_t>(i));
+      if (grid_.owner(p.position[i]) == comm_.rank()) mine.push_back(static_cast<std::uint32_t>(i));
     p.permute(mine);
     contacts.permute_walls(mine);
   }
@@ -82,19 +85,22 @@ class DomainExchange {
   // immigrants arrive with theirs (appended to `kept`, so they win over a copy's), ghosts are renewed.
   void redistribute(ParticleStore& p, ContactStore<State>& contacts, std::vector<KeptPair>& kept) {
     const int me = comm_.rank(), ranks = comm_.size();
-    if (++rebuilds_ % kRebalanceEvery == 0) rebalance(p);
+    const bool rebalanced = ++rebuilds_ % kRebalanceEvery == 0;
+    if (rebalanced) rebalance(p);
     const std::size_t walls = contacts.wall_state.size();
     std::vector<std::uint32_t> stay;
     std::vector<std::pair<std::uint32_t, int>> leaving;  // (id, new owner), sorted by id
     std::vector<std::vector<std::uint8_t>> out(ranks);
     std::vector<std::uint32_t> count(ranks, 0);
+    bool far = false;  // a particle moving to a rank beyond the neighbours (after cuts moved)
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.ghost[i]) continue;  // copies are dropped and sent afresh below
-      const int r = slabs_.owner(p.position[i]);
+      const int r = grid_.owner(p.position[i]);
       if (r == me) {
         stay.push_back(static_cast<std::uint32_t>(i));
         continue;
       }
+      far = far || !std::binary_search(neighbours_.begin(), neighbours_.end(), r);
       leaving.emplace_back(p.id[i], r);
       ++count[r];
       ++migrated_;
@@ -103,7 +109,7 @@ class DomainExchange {
     for (int r = 0; r < ranks; ++r) bytes::put(out[r], count[r]);
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.ghost[i]) continue;
-      const int r = slabs_.owner(p.position[i]);
+      const int r = grid_.owner(p.position[i]);
       if (r == me) continue;
       bytes::put(out[r], p.record(i));
       for (std::size_t w = 0; w < walls; ++w) {
@@ -129,7 +135,10 @@ class DomainExchange {
     out[me].clear();
     p.permute(stay);
     contacts.permute_walls(stay);
-    const auto in = comm_.exchange(out);
+    // Between rebalances a particle moves less than half a skin, so it stays within reach of its
+    // old box and its new owner is a neighbour; after one (or if not) every rank talks to every rank.
+    const bool everyone = comm_.any(rebalanced || far);
+    const auto in = everyone ? comm_.exchange(out) : comm_.exchange_with(neighbours_, out);
     for (int r = 0; r < ranks; ++r) {
       if (r == me || in[r].empty()) continue;
       std::size_t cursor = 0;
@@ -177,9 +186,8 @@ class DomainExchange {
       for (std::uint32_t i : send_index_[r])
         bytes::put(out[r], Moving{p.position[i], p.velocity[i], p.angular_velocity[i], p.radius[i], p.image[i]});
     }
-    const auto in = comm_.exchange(out);
-    for (int r = 0; r < ranks; ++r) {
-      if (r == comm_.rank()) continue;
+    const auto in = comm_.exchange_with(neighbours_, out);
+    for (int r : neighbours_) {
       if (in[r].size() != receive_index_[r].size() * sizeof(Moving))
         throw std::logic_error("domain exchange: ghost counts disagree between ranks");
       std::size_t cursor = 0;
@@ -201,33 +209,38 @@ class DomainExchange {
     std::array<std::int32_t, 3> image;
   };
 
-  // Every kRebalanceEvery rebuilds the cuts move so that each rank owns as many particles as the
-  // others again (a bed heaps, a chute's front moves); the particles then migrate as usual.
+  // Every kRebalanceEvery rebuilds the cuts move so that each slice of the grid holds as many
+  // particles as the others again (a bed heaps, a chute's front moves); the particles then migrate
+  // as usual, and the neighbours are found anew.
   static constexpr long kRebalanceEvery = 20;
   static constexpr int kBalanceBins = 4096;
   void rebalance(const ParticleStore& p) {
-    std::vector<double> counts(kBalanceBins, 0.0);
+    std::vector<double> counts(3 * kBalanceBins, 0.0);  // the three axes' histograms, summed at once
     for (std::size_t i = 0; i < p.size(); ++i)
-      if (!p.ghost[i]) counts[slabs_.bin_of(p.position[i], kBalanceBins)] += 1.0;
+      if (!p.ghost[i])
+        for (int a = 0; a < 3; ++a)
+          if (grid_.cut(a)) counts[a * kBalanceBins + grid_.bin_of(p.position[i], a, kBalanceBins)] += 1.0;
     comm_.sum_in_place(counts.data(), counts.size());
-    slabs_.rebalance(counts);
+    std::array<std::vector<double>, 3> by_axis;
+    for (int a = 0; a < 3; ++a) by_axis[a].assign(counts.begin() + a * kBalanceBins, counts.begin() + (a + 1) * kBalanceBins);
+    grid_.rebalance(by_axis);
+    neighbours_ = grid_.neighbours(comm_.rank());
     ++rebalances_;
   }
 
   void send_ghosts(ParticleStore& p, ContactStore<State>& contacts) {
-    const int me = comm_.rank(), ranks = comm_.size();
+    const int ranks = comm_.size();
     send_ids_.assign(ranks, {});
     receive_ids_.assign(ranks, {});
     std::vector<std::vector<std::uint8_t>> out(ranks);
     for (std::size_t i = 0; i < p.size(); ++i)
-      for (int r = 0; r < ranks; ++r) {
-        if (r == me || slabs_.distance_to(p.position[i], r) >= slabs_.ghost_width) continue;
+      for (int r : neighbours_) {
+        if (grid_.distance_to(p.position[i], r) >= grid_.ghost_width) continue;
         bytes::put(out[r], p.record(i));
         send_ids_[r].push_back(p.id[i]);
       }
-    const auto in = comm_.exchange(out);
-    for (int r = 0; r < ranks; ++r) {
-      if (r == me) continue;
+    const auto in = comm_.exchange_with(neighbours_, out);
+    for (int r : neighbours_) {
       std::size_t cursor = 0;
       while (cursor < in[r].size()) {
         ParticleStore::Record rec = bytes::take<ParticleStore::Record>(in[r], cursor);
@@ -243,7 +256,8 @@ class DomainExchange {
   }
 
   const parallel::Communicator& comm_;
-  SlabDecomposition slabs_;
+  DomainDecomposition grid_;
+  std::vector<int> neighbours_;  // sorted
   long long migrated_ = 0, rebuilds_ = 0, rebalances_ = 0;
   std::vector<std::vector<std::uint32_t>> send_ids_, receive_ids_;      // by rank, in message order
   std::vector<std::vector<std::uint32_t>> send_index_, receive_index_;  // the same, as indices now

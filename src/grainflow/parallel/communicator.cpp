@@ -1,6 +1,7 @@
 #include "grainflow/parallel/communicator.hpp"
 
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 
 #ifdef GRAINFLOW_HAVE_MPI
@@ -114,14 +115,54 @@ std::vector<std::vector<std::uint8_t>> Communicator::exchange(const std::vector<
   return incoming;
 }
 
+std::vector<std::vector<std::uint8_t>> Communicator::exchange_with(
+    const std::vector<int>& partners, const std::vector<std::vector<std::uint8_t>>& outgoing) const {
+  if (static_cast<int>(outgoing.size()) != size_) throw std::logic_error("Communicator::exchange_with: one buffer per rank");
+  std::vector<std::vector<std::uint8_t>> incoming(size_);
+#ifdef GRAINFLOW_HAVE_MPI
+  if (size_ > 1) {
+    const std::size_t n = partners.size();
+    std::vector<unsigned long long> send_sizes(n), receive_sizes(n);
+    std::vector<MPI_Request> requests(2 * n);
+    // Sizes first, then the bytes; both sides post their receives before their sends.
+    for (std::size_t k = 0; k < n; ++k)
+      MPI_Irecv(&receive_sizes[k], 1, MPI_UNSIGNED_LONG_LONG, partners[k], kSizeTag, MPI_COMM_WORLD, &requests[k]);
+    for (std::size_t k = 0; k < n; ++k) {
+      send_sizes[k] = outgoing[partners[k]].size();
+      MPI_Isend(&send_sizes[k], 1, MPI_UNSIGNED_LONG_LONG, partners[k], kSizeTag, MPI_COMM_WORLD, &requests[n + k]);
+    }
+    MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (receive_sizes[k] > static_cast<unsigned long long>(std::numeric_limits<int>::max()) ||
+          send_sizes[k] > static_cast<unsigned long long>(std::numeric_limits<int>::max()))
+        throw std::runtime_error("Communicator::exchange_with: a message above 2 GB (use more ranks)");
+      incoming[partners[k]].resize(receive_sizes[k]);
+      MPI_Irecv(incoming[partners[k]].data(), static_cast<int>(receive_sizes[k]), MPI_BYTE, partners[k], kDataTag,
+                MPI_COMM_WORLD, &requests[k]);
+    }
+    for (std::size_t k = 0; k < n; ++k)
+      MPI_Isend(outgoing[partners[k]].data(), static_cast<int>(send_sizes[k]), MPI_BYTE, partners[k], kDataTag,
+                MPI_COMM_WORLD, &requests[n + k]);
+    MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
+    return incoming;
+  }
+#else
+  (void)partners;
+#endif
+  incoming[0] = outgoing[0];
+  return incoming;
+}
+
 std::vector<std::vector<std::uint8_t>> Communicator::gather(const std::vector<std::uint8_t>& mine) const {
 #ifdef GRAINFLOW_HAVE_MPI
   if (size_ > 1) {
     int count = static_cast<int>(mine.size());
     std::vector<int> counts(root() ? size_ : 0), offsets(root() ? size_ : 0);
     MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-    int total = 0;
-    for (std::size_t r = 0; r < counts.size(); ++r) offsets[r] = total, total += counts[r];
+    long long total = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r) offsets[r] = static_cast<int>(total), total += counts[r];
+    if (total > std::numeric_limits<int>::max())
+      throw std::runtime_error("Communicator::gather: more than 2 GB to gather on rank 0");
     std::vector<std::uint8_t> all(static_cast<std::size_t>(total));
     MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
     std::vector<std::vector<std::uint8_t>> out;

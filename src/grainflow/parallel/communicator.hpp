@@ -27,12 +27,18 @@ class Communicator {
   void sum_in_place(double* values, std::size_t count) const;  // element by element, on every rank
   // Each rank sends outgoing[r] to rank r; returns what each rank sent to this one.
   std::vector<std::vector<std::uint8_t>> exchange(const std::vector<std::vector<std::uint8_t>>& outgoing) const;
+  // The same with only `partners` (symmetric: each partner names this rank too): point-to-point
+  // messages, so that the cost stays with the neighbours as the rank count grows. outgoing has one
+  // buffer per rank (only the partners' are sent); so has the result (only the partners' filled).
+  std::vector<std::vector<std::uint8_t>> exchange_with(const std::vector<int>& partners,
+                                                       const std::vector<std::vector<std::uint8_t>>& outgoing) const;
   // Rank 0 receives every rank's bytes in rank order; the others receive nothing.
   std::vector<std::vector<std::uint8_t>> gather(const std::vector<std::uint8_t>& mine) const;
   // Stops every rank (a failure on one rank that the others cannot see).
   [[noreturn]] void abort(int status) const;
 
  private:
+  static constexpr int kSizeTag = 71, kDataTag = 72;  // exchange_with's two messages per partner
   int rank_ = 0, size_ = 1;
 };
 
