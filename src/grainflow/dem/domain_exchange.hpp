@@ -186,7 +186,10 @@ class DomainExchange {
       for (std::uint32_t i : send_index_[r])
         bytes::put(out[r], Moving{p.position[i], p.velocity[i], p.angular_velocity[i], p.radius[i], p.image[i]});
     }
-    const auto in = comm_.exchange_with(neighbours_, out);
+    // Both sides know the counts since the last rebuild: no sizes sent ahead.
+    std::vector<std::size_t> expected(ranks, 0);
+    for (int r : neighbours_) expected[r] = receive_index_[r].size() * sizeof(Moving);
+    const auto in = comm_.exchange_with(neighbours_, out, &expected);
     for (int r : neighbours_) {
       if (in[r].size() != receive_index_[r].size() * sizeof(Moving))
         throw std::logic_error("domain exchange: ghost counts disagree between ranks");

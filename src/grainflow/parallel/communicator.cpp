@@ -116,7 +116,8 @@ std::vector<std::vector<std::uint8_t>> Communicator::exchange(const std::vector<
 }
 
 std::vector<std::vector<std::uint8_t>> Communicator::exchange_with(
-    const std::vector<int>& partners, const std::vector<std::vector<std::uint8_t>>& outgoing) const {
+    const std::vector<int>& partners, const std::vector<std::vector<std::uint8_t>>& outgoing,
+    const std::vector<std::size_t>* expected) const {
   if (static_cast<int>(outgoing.size()) != size_) throw std::logic_error("Communicator::exchange_with: one buffer per rank");
   std::vector<std::vector<std::uint8_t>> incoming(size_);
 #ifdef GRAINFLOW_HAVE_MPI
@@ -124,14 +125,17 @@ std::vector<std::vector<std::uint8_t>> Communicator::exchange_with(
     const std::size_t n = partners.size();
     std::vector<unsigned long long> send_sizes(n), receive_sizes(n);
     std::vector<MPI_Request> requests(2 * n);
-    // Sizes first, then the bytes; both sides post their receives before their sends.
-    for (std::size_t k = 0; k < n; ++k)
-      MPI_Irecv(&receive_sizes[k], 1, MPI_UNSIGNED_LONG_LONG, partners[k], kSizeTag, MPI_COMM_WORLD, &requests[k]);
-    for (std::size_t k = 0; k < n; ++k) {
-      send_sizes[k] = outgoing[partners[k]].size();
-      MPI_Isend(&send_sizes[k], 1, MPI_UNSIGNED_LONG_LONG, partners[k], kSizeTag, MPI_COMM_WORLD, &requests[n + k]);
+    for (std::size_t k = 0; k < n; ++k) send_sizes[k] = outgoing[partners[k]].size();
+    if (expected != nullptr) {
+      for (std::size_t k = 0; k < n; ++k) receive_sizes[k] = (*expected)[partners[k]];
+    } else {
+      // Sizes first, then the bytes; both sides post their receives before their sends.
+      for (std::size_t k = 0; k < n; ++k)
+        MPI_Irecv(&receive_sizes[k], 1, MPI_UNSIGNED_LONG_LONG, partners[k], kSizeTag, MPI_COMM_WORLD, &requests[k]);
+      for (std::size_t k = 0; k < n; ++k)
+        MPI_Isend(&send_sizes[k], 1, MPI_UNSIGNED_LONG_LONG, partners[k], kSizeTag, MPI_COMM_WORLD, &requests[n + k]);
+      MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
     }
-    MPI_Waitall(static_cast<int>(2 * n), requests.data(), MPI_STATUSES_IGNORE);
     for (std::size_t k = 0; k < n; ++k) {
       if (receive_sizes[k] > static_cast<unsigned long long>(std::numeric_limits<int>::max()) ||
           send_sizes[k] > static_cast<unsigned long long>(std::numeric_limits<int>::max()))
@@ -148,6 +152,7 @@ std::vector<std::vector<std::uint8_t>> Communicator::exchange_with(
   }
 #else
   (void)partners;
+  (void)expected;
 #endif
   incoming[0] = outgoing[0];
   return incoming;

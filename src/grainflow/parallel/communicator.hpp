@@ -3,6 +3,7 @@
 // every operation is the identity, so the engines and drivers carry no #ifdefs.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -30,8 +31,11 @@ class Communicator {
   // The same with only `partners` (symmetric: each partner names this rank too): point-to-point
   // messages, so that the cost stays with the neighbours as the rank count grows. outgoing has one
   // buffer per rank (only the partners' are sent); so has the result (only the partners' filled).
+  // With `expected` (bytes from each rank, known to both sides) the sizes are not sent first: one
+  // round of messages instead of two (the ghosts' refresh every step).
   std::vector<std::vector<std::uint8_t>> exchange_with(const std::vector<int>& partners,
-                                                       const std::vector<std::vector<std::uint8_t>>& outgoing) const;
+                                                       const std::vector<std::vector<std::uint8_t>>& outgoing,
+                                                       const std::vector<std::size_t>* expected = nullptr) const;
   // Rank 0 receives every rank's bytes in rank order; the others receive nothing.
   std::vector<std::vector<std::uint8_t>> gather(const std::vector<std::uint8_t>& mine) const;
   // Stops every rank (a failure on one rank that the others cannot see).
