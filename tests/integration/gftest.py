@@ -7,6 +7,7 @@ import csv
 import math
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -33,6 +34,20 @@ def run(exe, *args, cwd=None, timeout=120):
     """Runs grainflow with `args`; returns (exit status, stdout, stderr)."""
     result = subprocess.run([exe, *args], capture_output=True, text=True, timeout=timeout, cwd=cwd)
     return result.returncode, result.stdout, result.stderr
+
+
+def mpi_environment():
+    """The environment for mpirun here: as root Open MPI needs its two OMPI_ALLOW_RUN_AS_ROOT
+    variables, and containers refuse cross-memory attach (shared memory is still used)."""
+    env = dict(os.environ)
+    env.update({"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
+                "OMPI_MCA_btl_vader_single_copy_mechanism": "none"})
+    return env
+
+
+def mpirun_found():
+    """True when mpirun is on PATH; a failed check otherwise."""
+    return check(shutil.which("mpirun") is not None, "mpirun not found (tools/install_deps.sh installs openmpi-bin)")
 
 
 def write_text(path, text):

@@ -27,13 +27,12 @@ Usage: /usr/bin/python3 tests/integration/test_mpi_dem.py PATH_TO_grainflow
 import json
 import math
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gftest import check, executable_from_argv, finish, read_csv  # noqa: E402
+from gftest import check, executable_from_argv, finish, mpi_environment, mpirun_found, read_csv  # noqa: E402
 
 BED = "cases/demo/vibrated_bed.toml"
 DIAMETER = 0.003  # m, the bed's spheres
@@ -43,16 +42,8 @@ LONG = ["--set", "particles.expansion_time=0.02", "--set", "drive.start=0.05", "
         "--set", "run.duration=1.2", "--set", "output.average_start=0.3"]
 
 
-def mpi_environment():
-    env = dict(os.environ)
-    env.update({"OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-                # no cross-memory attach (refused in many containers); shared memory still used
-                "OMPI_MCA_btl_vader_single_copy_mechanism": "none"})
-    return env
-
-
-def run_ranks(exe, ranks, out, args, timeout=300, threads=1):
-    command = [exe, "run", BED, "-o", out, "--quiet", "--threads", str(threads), *args]
+def run_ranks(exe, ranks, out, args, timeout=300, threads=1, case=BED):
+    command = [exe, "run", case, "-o", out, "--quiet", "--threads", str(threads), *args]
     if ranks > 1:
         command = ["mpirun", "--oversubscribe", "-np", str(ranks), *command]
     result = subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=mpi_environment())
@@ -71,7 +62,7 @@ def main():
     exe = executable_from_argv("usage: test_mpi_dem.py PATH_TO_grainflow")
     if exe is None:
         return 2
-    if not check(shutil.which("mpirun") is not None, "mpirun not found (tools/install_deps.sh installs openmpi-bin)"):
+    if not mpirun_found():
         return finish("test_mpi_dem")
     with tempfile.TemporaryDirectory() as tmp:
         # Short run: the same state on 1, 2 and 4 ranks.

@@ -27,7 +27,6 @@ Usage: /usr/bin/python3 tests/integration/test_mpi_outputs.py PATH_TO_grainflow
 import filecmp
 import json
 import os
-import shutil
 import signal
 import subprocess
 import sys
@@ -42,8 +41,8 @@ from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructure
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
 from grainflow_plots import snapshots  # noqa: E402
-from gftest import check, executable_from_argv, finish, read_csv, write_text  # noqa: E402
-from test_mpi_dem import BED, DIAMETER, SHORT, mpi_environment  # noqa: E402
+from gftest import check, executable_from_argv, finish, mpi_environment, mpirun_found, read_csv, write_text  # noqa: E402
+from test_mpi_dem import BED, DIAMETER, SHORT, run_ranks  # noqa: E402
 
 SAMPLED = """
 [trajectory]
@@ -64,14 +63,6 @@ particles = [0, 7, 100, 150, 238]
 interval = 0.001
 """
 FLOOR_SPEED = 0.1  # m/s, the scale of the bed's velocities (the drive's peak speed is of this order)
-
-
-def run_case(exe, ranks, case, out, args):
-    command = [exe, "run", case, "-o", out, "--quiet", *args]
-    if ranks > 1:
-        command = ["mpirun", "--oversubscribe", "-np", str(ranks), *command]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=300, env=mpi_environment())
-    return result.returncode, result.stderr
 
 
 def datasets(path):
@@ -156,7 +147,7 @@ def main():
     exe = executable_from_argv("usage: test_mpi_outputs.py PATH_TO_grainflow")
     if exe is None:
         return 2
-    if not check(shutil.which("mpirun") is not None, "mpirun not found (tools/install_deps.sh installs openmpi-bin)"):
+    if not mpirun_found():
         return finish("test_mpi_outputs")
     with tempfile.TemporaryDirectory() as tmp:
         case = os.path.join(tmp, "bed.toml")
@@ -166,7 +157,7 @@ def main():
         out = {}
         for ranks in (1, 2):
             out[ranks] = os.path.join(tmp, f"sampled_{ranks}")
-            status, err = run_case(exe, ranks, case, out[ranks], SHORT + snapshots)
+            status, err = run_ranks(exe, ranks, out[ranks], SHORT + snapshots, case=case)
             check(status == 0, f"{ranks} rank(s): exit {status}: {err[-2000:]}")
         if status == 0:
             compare_outputs(out[1], out[2])
@@ -174,9 +165,9 @@ def main():
         # Checkpoints on 2 ranks: unsplit, and stopped at half time then continued.
         every = ["--set", "output.checkpoint_interval=0.015"]
         whole, split = os.path.join(tmp, "whole"), os.path.join(tmp, "split")
-        status, err = run_case(exe, 2, case, whole, SHORT + every)
+        status, err = run_ranks(exe, 2, whole, case=case, args=SHORT + every)
         check(status == 0, f"unsplit run with checkpoints: exit {status}: {err[-2000:]}")
-        status, err = run_case(exe, 2, case, split, SHORT + every + ["--set", "run.duration=0.015"])
+        status, err = run_ranks(exe, 2, split, case=case, args=SHORT + every + ["--set", "run.duration=0.015"])
         check(status == 0, f"first half: exit {status}: {err[-2000:]}")
         checkpoint = os.path.join(split, "checkpoint.h5")
         if not check(os.path.exists(checkpoint), "the first half on 2 ranks wrote no checkpoint.h5"):
@@ -186,10 +177,10 @@ def main():
             check(len(f["particles/id"]) == len(read_csv(os.path.join(whole, "final_state.csv"))),
                   "checkpoint.h5 /particles: not every particle")
         refused = os.path.join(tmp, "refused")
-        status, err = run_case(exe, 1, case, refused, SHORT + ["--restart", checkpoint])
+        status, err = run_ranks(exe, 1, refused, case=case, args=SHORT + ["--restart", checkpoint])
         check(status == 2 and "written by 2 MPI rank(s), this run has 1" in err,
               f"a 2-rank checkpoint on 1 rank: exit {status}: {err[-500:]}")
-        status, err = run_case(exe, 2, case, split, SHORT + every + ["--restart", checkpoint])
+        status, err = run_ranks(exe, 2, split, case=case, args=SHORT + every + ["--restart", checkpoint])
         check(status == 0, f"second half: exit {status}: {err[-2000:]}")
         same_files(whole, split, ["final_state.csv", "timeseries.csv", "profiles.csv", "tracers.csv",
                                   "convection.csv", "trajectory.h5", "zone_series.h5"])
@@ -212,11 +203,11 @@ def main():
                   f"SIGTERM on 2 ranks: errors {summary['errors']}")
             check(summary["simulated_time"] < 20, "SIGTERM on 2 ranks: the run was not stopped")
             end = f"{summary['simulated_time'] + 0.005:.6f}"
-            status, err = run_case(exe, 2, case, stopped, SHORT + ["--restart", os.path.join(stopped, "checkpoint.h5"),
+            status, err = run_ranks(exe, 2, stopped, case=case, args=SHORT + ["--restart", os.path.join(stopped, "checkpoint.h5"),
                                                                    "--set", f"run.duration={end}"])
             check(status == 0, f"continued after SIGTERM: exit {status}: {err[-2000:]}")
             unsplit = os.path.join(tmp, "unsplit")
-            status, err = run_case(exe, 2, case, unsplit, SHORT + ["--set", f"run.duration={end}"])
+            status, err = run_ranks(exe, 2, unsplit, case=case, args=SHORT + ["--set", f"run.duration={end}"])
             check(status == 0, f"unsplit run to {end} s: exit {status}: {err[-2000:]}")
             same_files(unsplit, stopped, ["final_state.csv", "tracers.csv", "trajectory.h5"])
     return finish("test_mpi_outputs")

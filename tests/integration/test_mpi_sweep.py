@@ -5,14 +5,12 @@ sweep.json for all of them, with the same results as a sweep without MPI.
 Usage: /usr/bin/python3 tests/integration/test_mpi_sweep.py PATH_TO_grainflow
 """
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gftest import check, executable_from_argv, finish, read_csv, run  # noqa: E402
-from test_mpi_dem import mpi_environment  # noqa: E402
+from gftest import check, executable_from_argv, finish, mpi_environment, mpirun_found, read_csv, run  # noqa: E402
 
 CHUTE = "cases/campbell1982/chute_30deg.toml"
 VALUES = ["0.5", "0.6", "0.7", "0.8", "0.9"]
@@ -22,7 +20,7 @@ def main():
     exe = executable_from_argv("usage: test_mpi_sweep.py PATH_TO_grainflow")
     if exe is None:
         return 2
-    if not check(shutil.which("mpirun") is not None, "mpirun not found (tools/install_deps.sh installs openmpi-bin)"):
+    if not mpirun_found():
         return finish("test_mpi_sweep")
     with tempfile.TemporaryDirectory() as tmp:
         args = ["sweep", CHUTE, "--set", "run.duration=5", "--vary", "collision.restitution=" + ",".join(VALUES)]
