@@ -15,8 +15,9 @@
 
 namespace grainflow::app {
 
-// Reads `path` (this rank's state) and checks it belongs to a case of this engine, dimension and
-// particle count, written by as many MPI ranks as this run has.
+// Reads `path` and checks it belongs to a case of this engine, dimension and particle count. Written
+// by as many MPI ranks as this run has, it gives this rank's own state; by another number, the
+// portable state (a DEM run's, checkpoint.portable).
 io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long long particles,
                             const parallel::Communicator& comm = parallel::Communicator::world());
 
@@ -31,10 +32,12 @@ std::string interrupted_message(int signal, double time, const std::string& unit
 // Writes dir/checkpoint.h5 from `transfer(archive)`, which must be the same function a restart
 // reads with. On several MPI ranks every rank calls it, with its own state; rank 0 gathers the
 // states and writes the file with `particles` (all of them, rank 0's gathered view).
+// `portable` (rank 0's is written): the run's state for a restart on another rank count, or empty.
 template <class Transfer>
 void write_run_checkpoint(const std::string& dir, const CaseConfig& c, const ParticleStore& particles, double time,
                           long long step, Transfer&& transfer,
-                          const parallel::Communicator& comm = parallel::Communicator::world()) {
+                          const parallel::Communicator& comm = parallel::Communicator::world(),
+                          const std::vector<std::uint8_t>& portable = {}) {
   io::StateArchive ar = io::StateArchive::for_writing();
   transfer(ar);
   std::vector<std::vector<std::uint8_t>> states;
@@ -51,7 +54,7 @@ void write_run_checkpoint(const std::string& dir, const CaseConfig& c, const Par
   h.case_path = c.path;
   h.case_overrides = join_overrides(c.overrides);
   h.ranks = comm.size();
-  io::write_checkpoint(dir + "/checkpoint.h5", h, particles, states);
+  io::write_checkpoint(dir + "/checkpoint.h5", h, particles, states, portable);
 }
 
 template <class Transfer>

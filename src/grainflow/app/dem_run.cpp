@@ -3,6 +3,7 @@
 #include "grainflow/app/checkpointing.hpp"
 #include "grainflow/app/interrupt.hpp"
 #include "grainflow/app/dem_parallel_view.hpp"
+#include "grainflow/app/dem_portable_state.hpp"
 #include "grainflow/parallel/communicator.hpp"
 
 #include <algorithm>
@@ -133,6 +134,15 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   const long long particle_count = static_cast<long long>(initial.particles.size());
   std::optional<io::Checkpoint> restart;
   if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count, comm);
+  // A checkpoint of another rank count: its particles and clock go into the initial state now (the
+  // sub-domains are placed on them), its contact memory into the engine once built.
+  std::optional<io::StateArchive> portable_restart;
+  dem::PortableParticles portable_particles;
+  if (restart && restart->portable) {
+    portable_restart.emplace(io::StateArchive::for_reading(restart->state, options.restart));
+    portable_restart->tag("portable dem run");
+    read_portable_particles(*portable_restart, portable_particles, initial);
+  }
 
   fs::create_directories(options.output_directory);
   const std::string dir = options.output_directory;
@@ -215,12 +225,62 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   };
   // The HDF5 streams are copied beside the checkpoint first: a checkpoint never counts more samples
   // than its copies hold.
-  // Several MPI ranks: each rank's own state, gathered by rank 0 into the one file.
+  // The same in a form no decomposition shapes, for a restart on another rank count: the
+  // engine's state gathered by ids, the accumulators each rank holds a share of summed over the
+  // ranks (to be kept by one rank at the restart). Collective; rank 0's archive is the one written.
+  auto portable_run = [&](io::StateArchive& ar, auto& e) {
+    ar.tag("portable dem run");
+    write_portable_engine(ar, e, comm);
+    ar(rows, profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
+    if (snapshots) ar(*snapshots);
+    if (zone_series) ar(*zone_series);
+    if (field) {
+      FieldOutput whole = *field;
+      if (ranks) whole.field->sum_over_ranks(rank_reduce);
+      ar(whole);
+    }
+    if (tracers) {
+      TracerOutput whole = *tracers;
+      whole.rows = tracers->gathered_rows(comm);
+      ar(whole);
+    }
+    if (trajectory) {
+      observe::TrajectorySampler whole = *trajectory->sampler;
+      whole.sum_open_window();
+      ar(whole);
+    }
+    ar.tag("end of portable dem run");
+  };
+  auto restore_portable_run = [&](io::StateArchive& ar, auto& e) {
+    read_portable_contacts(ar, e, portable_particles, writes);
+    ar(rows, profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
+    if (snapshots) ar(*snapshots);
+    if (zone_series) ar(*zone_series);
+    // Rank 0 keeps the summed accumulators; the other ranks add their shares from here on.
+    if (field) {
+      ar(*field);
+      if (!writes) field->field->clear_sums();
+    }
+    if (tracers) {
+      ar(*tracers);
+      if (!writes) tracers->rows.clear();
+    }
+    if (trajectory) {
+      ar(*trajectory->sampler);
+      if (!writes) trajectory->sampler->clear_open_window();
+    }
+    ar.tag("end of portable dem run");
+    ar.expect_end();
+  };
+  // Several MPI ranks: each rank's own state, gathered by rank 0 into the one file, and the
+  // portable state.
   auto checkpoint = [&](auto& e) {
     if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
     if (zone_series) zone_series->copy_stream(dir + "/checkpoint_zone_series.h5");
+    io::StateArchive portable = io::StateArchive::for_writing();
+    portable_run(portable, e);
     write_run_checkpoint(dir, c, all_particles(e), e.state().time, e.state().step,
-                         [&](io::StateArchive& ar) { transfer(ar, e); }, comm);
+                         [&](io::StateArchive& ar) { transfer(ar, e); }, comm, portable.bytes());
     gathered = ParticleStore{};
   };
   int interrupted = 0;
@@ -276,8 +336,16 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   try {
     std::visit(
         [&](auto& e) {
-          if (restart) {
+          if (portable_restart) {
+            restore_portable_run(*portable_restart, e);
+            warnings.push_back("continued on " + std::to_string(comm.size()) + " MPI rank(s) from a checkpoint of " +
+                               std::to_string(restart->header.ranks) +
+                               ": the same state and physics, but not the same bits as a run that never stopped "
+                               "(the neighbour lists were built afresh, so forces add up in another order)");
+          } else if (restart) {
             restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
+          }
+          if (restart) {
             const std::string beside = checkpoint_folder(options.restart);
             if (trajectory) trajectory->resume_stream(beside + "/checkpoint_trajectory.h5");
             if (zone_series) zone_series->resume_stream(beside + "/checkpoint_zone_series.h5");

@@ -165,7 +165,7 @@ std::string TracerOutput::row(double time, std::uint32_t id, const Vec3& x, cons
   return line;
 }
 
-void TracerOutput::write(const std::string& path, const parallel::Communicator& comm) const {
+std::vector<TracerOutput::Row> TracerOutput::gathered_rows(const parallel::Communicator& comm) const {
   std::vector<Row> all;
   if (comm.size() == 1) {
     all = rows;
@@ -202,6 +202,11 @@ void TracerOutput::write(const std::string& path, const parallel::Communicator& 
     }
     std::sort(all.begin(), all.end(), [](const Row& a, const Row& b) { return std::tie(a.sample, a.id) < std::tie(b.sample, b.id); });
   }
+  return all;
+}
+
+void TracerOutput::write(const std::string& path, const parallel::Communicator& comm) const {
+  const std::vector<Row> all = gathered_rows(comm);
   if (!comm.root()) return;
   io::write_atomically(path, [&](std::ostream& out) {
     out << "# tracer histories: unwrapped centre, velocity, coordination (particles touched) and walls touched, with "

@@ -180,6 +180,8 @@ struct TracerOutput {
   }
   // Collective on several ranks: rank 0 gathers every rank's rows and writes them in order.
   void write(const std::string& path, const parallel::Communicator& comm) const;
+  // Collective: every rank's rows in order, on rank 0 (the others get none).
+  std::vector<Row> gathered_rows(const parallel::Communicator& comm) const;
 
   template <class Archive>
   void serialize(Archive& ar) {

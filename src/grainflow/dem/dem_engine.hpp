@@ -21,6 +21,7 @@
 #include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/fault_checks.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
+#include "grainflow/dem/portable_state.hpp"
 
 namespace grainflow::dem {
 
@@ -90,6 +91,63 @@ class DemEngine {
     for (auto& wall : s_.walls) ar(wall.position, wall.velocity);
     ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_);
     if (domain_) ar(*domain_);  // MPI: a restart runs on as many ranks (checked before)
+  }
+
+  // Restarts on another number of MPI ranks (portable_state.hpp).
+  using Portable = PortableContacts<State, ContactStatistics>;
+  // This rank's share: its own particles, the touching pairs listed under a particle it owns (so
+  // that a pair across ranks is taken once), its particles' wall contacts, its counts.
+  void portable_share(PortableParticles& particles, Portable& contacts) const {
+    const ParticleStore& p = s_.particles;
+    particles.time = s_.time;
+    particles.step = s_.step;
+    particles.bump_velocity = s_.bump_velocity;
+    particles.bump_displacement = s_.bump_displacement;
+    particles.expansion_rate = s_.expansion_rate;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.ghost[i]) continue;
+      particles.particles.push_back(p.record(i));
+      for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
+        if (contacts_.pair_touching[k]) contacts.pairs.push_back({p.id[i], p.id[pairs_.partner[k]], contacts_.pair_state[k]});
+      for (std::size_t w = 0; w < contacts_.wall_state.size(); ++w)
+        if (contacts_.wall_touching[w][i])
+          contacts.walls.push_back({p.id[i], static_cast<std::uint32_t>(w), contacts_.wall_state[w][i]});
+    }
+    contacts.stats = stats_;
+    contacts.rebuilds_since_sort = rebuilds_since_sort_;
+  }
+
+  // After the engine was built from the portable particles and clock: their contact memory, the
+  // last step's forces (the next half kick uses them) and the counters. `totals_here`: this rank
+  // keeps the counts of contacts begun (one rank does), so that the ranks' sum stays the run's.
+  void restore_portable(const PortableParticles& particles, const Portable& contacts, bool totals_here) {
+    ParticleStore& p = s_.particles;
+    contacts_.restore(contacts.pairs, pairs_, p.id);
+    std::vector<std::int64_t> index(particles.particles.size(), -1);
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.id[i] < index.size()) index[p.id[i]] = static_cast<std::int64_t>(i);
+    for (std::size_t w = 0; w < contacts_.wall_state.size(); ++w) {
+      std::fill(contacts_.wall_state[w].begin(), contacts_.wall_state[w].end(), State{});
+      std::fill(contacts_.wall_touching[w].begin(), contacts_.wall_touching[w].end(), 0);
+    }
+    for (const auto& c : contacts.walls) {
+      const std::int64_t i = c.id < index.size() ? index[c.id] : -1;
+      if (i < 0 || p.ghost[i] || c.wall >= contacts_.wall_state.size()) continue;
+      contacts_.wall_state[c.wall][i] = c.state;
+      contacts_.wall_touching[c.wall][i] = 1;
+    }
+    for (const auto& r : particles.particles) {
+      const std::int64_t i = r.id < index.size() ? index[r.id] : -1;
+      if (i < 0) continue;
+      p.force[i] = r.force;
+      p.torque[i] = r.torque;
+    }
+    const ContactStatistics now = stats_;  // the contacts touching now, counted at construction
+    stats_ = contacts.stats;
+    stats_.contacts = now.contacts;
+    stats_.wall_contacts = now.wall_contacts;
+    if (!totals_here) stats_.collisions = stats_.wall_collisions = 0;
+    rebuilds_since_sort_ = contacts.rebuilds_since_sort;
   }
 
   // One velocity-Verlet step: half kick, drift, walls, (rebuild), forces, half kick.

@@ -12,7 +12,7 @@ std::string state_name(int rank) { return rank == 0 ? "/state" : "/state_rank_" 
 }  // namespace
 
 void write_checkpoint(const std::string& path, const CheckpointHeader& h, const ParticleStore& p,
-                      const std::vector<std::vector<std::uint8_t>>& states) {
+                      const std::vector<std::vector<std::uint8_t>>& states, const std::vector<std::uint8_t>& portable) {
   if (states.size() != static_cast<std::size_t>(h.ranks)) throw RunError("checkpoint: one state per MPI rank is needed");
   H5Writer file(path);
   file.attribute("/", "format", std::string(kFormat));
@@ -42,6 +42,7 @@ void write_checkpoint(const std::string& path, const CheckpointHeader& h, const 
   file.write("/particles/id", ids);
   file.write("/particles/species", species);
   for (std::size_t r = 0; r < states.size(); ++r) file.write_bytes(state_name(static_cast<int>(r)), states[r]);
+  if (!portable.empty()) file.write_bytes("/portable", portable);
   file.commit();
 }
 
@@ -74,6 +75,12 @@ CheckpointHeader header_of(const H5Reader& file, const std::string& path) {
 }
 }  // namespace
 
+bool has_portable_state(const std::string& path) {
+  bool found = false;
+  reading(path, [&](const H5Reader& file) { found = file.has("/portable"); });
+  return found;
+}
+
 CheckpointHeader read_checkpoint_header(const std::string& path) {
   CheckpointHeader h;
   reading(path, [&](const H5Reader& file) { h = header_of(file, path); });
@@ -84,7 +91,13 @@ Checkpoint read_checkpoint(const std::string& path, int rank) {
   Checkpoint c;
   reading(path, [&](const H5Reader& file) {
     c.header = header_of(file, path);
-    if (rank < c.header.ranks) c.state = file.read_bytes(state_name(rank));
+    if (rank == kPortable) {
+      if (!file.has("/portable")) throw InputError(path, "", "it holds no portable state (written by an older version)");
+      c.state = file.read_bytes("/portable");
+      c.portable = true;
+    } else if (rank < c.header.ranks) {
+      c.state = file.read_bytes(state_name(rank));
+    }
   });
   return c;
 }

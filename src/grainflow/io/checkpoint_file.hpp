@@ -24,17 +24,24 @@ struct CheckpointHeader {
   long long ranks = 1;      // MPI ranks that wrote it: each rank's state is its own (same count to restart)
 };
 
-// `states`: one per rank (header.ranks of them), in /state and /state_rank_1, /state_rank_2, ...
+// `states`: one per rank (header.ranks of them), in /state and /state_rank_1, /state_rank_2, ...;
+// `portable` (if not empty): the run's state in a form a restart on another rank count reads, in
+// /portable.
 void write_checkpoint(const std::string& path, const CheckpointHeader& header, const ParticleStore& particles,
-                      const std::vector<std::vector<std::uint8_t>>& states);
+                      const std::vector<std::vector<std::uint8_t>>& states,
+                      const std::vector<std::uint8_t>& portable = {});
 
 struct Checkpoint {
   CheckpointHeader header;
-  std::vector<std::uint8_t> state;  // the reading rank's
+  std::vector<std::uint8_t> state;  // the reading rank's, or the portable state
+  bool portable = false;
 };
 
-// `rank`'s state. Throw InputError naming the file (missing, not a checkpoint, damaged).
+// `rank`'s state, or with rank = kPortable the portable one. Throw InputError naming the file
+// (missing, not a checkpoint, damaged, no portable state).
+inline constexpr int kPortable = -1;
 Checkpoint read_checkpoint(const std::string& path, int rank = 0);
+bool has_portable_state(const std::string& path);
 CheckpointHeader read_checkpoint_header(const std::string& path);
 
 }  // namespace grainflow::io

@@ -48,8 +48,7 @@ void TrajectorySampler::add(const ParticleStore& p, const PeriodicBox& box, doub
 void TrajectorySampler::finish_window() {
   // MPI: each rank integrated the tracked particles it owned; a particle that changed ranks within
   // the window has its integral in two parts.
-  ranks_.sum(velocity_sum_.data(), velocity_sum_.size());
-  ranks_.sum(position_sum_.data(), position_sum_.size());
+  sum_open_window();
   const double inverse = 1.0 / filled_;
   for (double& v : velocity_sum_) v *= inverse;
   for (double& x : position_sum_) x *= inverse;

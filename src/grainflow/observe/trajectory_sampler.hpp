@@ -6,6 +6,7 @@
 // whole number of steps. Particles are followed by id, so re-sorting the store does not matter.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -30,6 +31,16 @@ class TrajectorySampler {
   // MPI: each rank observes its own particles and the windows' integrals are summed over the
   // ranks as each window closes (the sink then sees every particle on every rank).
   void set_reduce(RankReduce ranks) { ranks_ = std::move(ranks); }
+  // A restart on another rank count: the open window's integrals summed over the ranks (collective),
+  // to be kept by one rank; the others start their share from zero.
+  void sum_open_window() {
+    ranks_.sum(velocity_sum_.data(), velocity_sum_.size());
+    ranks_.sum(position_sum_.data(), position_sum_.size());
+  }
+  void clear_open_window() {
+    std::fill(velocity_sum_.begin(), velocity_sum_.end(), 0.0);
+    std::fill(position_sum_.begin(), position_sum_.end(), 0.0);
+  }
   bool done() const { return taken_ >= samples_; }
   long taken() const { return taken_; }
   const std::vector<std::uint32_t>& ids() const { return ids_; }

@@ -51,6 +51,11 @@ void VelocityField::sum_over_ranks(const RankReduce& ranks) {
   for (auto& bin : by_bin_) sum(bin);
 }
 
+void VelocityField::clear_sums() {
+  std::fill(long_term_.begin(), long_term_.end(), Sums{});
+  for (auto& bin : by_bin_) std::fill(bin.begin(), bin.end(), Sums{});
+}
+
 std::vector<FieldCell> VelocityField::cells(int bin) const {
   const auto& sums = bin < 0 ? long_term_ : by_bin_.at(bin);
   std::vector<FieldCell> out;

@@ -32,6 +32,8 @@ class VelocityField {
   // MPI: each rank sampled its own particles; this sums the cells over the ranks (once, before
   // the field is read).
   void sum_over_ranks(const RankReduce& ranks);
+  // A restart on another rank count: one rank keeps the summed cells, the others start from zero.
+  void clear_sums();
   std::vector<FieldCell> cells(int bin = -1) const;  // -1: long-term
   // Visit-weighted mean of the cells' mean speeds (Table 5.1's average convection velocity).
   double convection_speed() const;
