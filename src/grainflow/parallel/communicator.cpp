@@ -1,5 +1,6 @@
 #include "grainflow/parallel/communicator.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -161,17 +162,26 @@ std::vector<std::vector<std::uint8_t>> Communicator::exchange_with(
 std::vector<std::vector<std::uint8_t>> Communicator::gather(const std::vector<std::uint8_t>& mine) const {
 #ifdef GRAINFLOW_HAVE_MPI
   if (size_ > 1) {
-    int count = static_cast<int>(mine.size());
-    std::vector<int> counts(root() ? size_ : 0), offsets(root() ? size_ : 0);
-    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-    long long total = 0;
-    for (std::size_t r = 0; r < counts.size(); ++r) offsets[r] = static_cast<int>(total), total += counts[r];
-    if (total > std::numeric_limits<int>::max())
-      throw std::runtime_error("Communicator::gather: more than 2 GB to gather on rank 0");
-    std::vector<std::uint8_t> all(static_cast<std::size_t>(total));
-    MPI_Gatherv(mine.data(), count, MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+    // Rank by rank, in pieces of at most 1 GiB: a checkpoint of 10^7 particles gathers more than
+    // MPI's int counts can name in one message.
+    constexpr unsigned long long kPiece = 1ULL << 30;
+    unsigned long long count = mine.size();
+    std::vector<unsigned long long> counts(root() ? size_ : 0);
+    MPI_Gather(&count, 1, MPI_UNSIGNED_LONG_LONG, counts.data(), 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     std::vector<std::vector<std::uint8_t>> out;
-    for (std::size_t r = 0; r < counts.size(); ++r) out.emplace_back(all.begin() + offsets[r], all.begin() + offsets[r] + counts[r]);
+    if (root()) {
+      out.resize(size_);
+      out[0] = mine;
+      for (int r = 1; r < size_; ++r) {
+        out[r].resize(counts[r]);
+        for (unsigned long long at = 0; at < counts[r]; at += kPiece)
+          MPI_Recv(out[r].data() + at, static_cast<int>(std::min(kPiece, counts[r] - at)), MPI_BYTE, r, kGatherTag,
+                   MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      }
+    } else {
+      for (unsigned long long at = 0; at < count; at += kPiece)
+        MPI_Send(mine.data() + at, static_cast<int>(std::min(kPiece, count - at)), MPI_BYTE, 0, kGatherTag, MPI_COMM_WORLD);
+    }
     return out;
   }
 #endif

@@ -43,6 +43,7 @@ class Communicator {
 
  private:
   static constexpr int kSizeTag = 71, kDataTag = 72;  // exchange_with's two messages per partner
+  static constexpr int kGatherTag = 73;
   int rank_ = 0, size_ = 1;
 };
 
