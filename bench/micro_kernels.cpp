@@ -5,7 +5,7 @@
 #include <random>
 
 #include "grainflow/core/case_loader.hpp"
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 
 using namespace grainflow;
 using namespace grainflow::dem;

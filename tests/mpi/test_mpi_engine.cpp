@@ -17,7 +17,7 @@
 #include "grainflow/app/dem_parallel_view.hpp"
 #include "grainflow/app/dem_run.hpp"
 #include "grainflow/core/case_loader.hpp"
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/fault_checks.hpp"
 #include "grainflow/parallel/communicator.hpp"
 

@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "grainflow/core/case_loader.hpp"
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/observe/global_sample.hpp"
 
 using namespace grainflow;

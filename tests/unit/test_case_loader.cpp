@@ -105,10 +105,10 @@ TEST(CaseLoader, MinimalCaseLoadsWithItsValuesAndDefaults) {
   EXPECT_EQ(c.species[0].name, "glass");
   EXPECT_DOUBLE_EQ(c.species[0].diameter, 0.003);
   EXPECT_EQ(c.species[0].count, 20);
-  EXPECT_DOUBLE_EQ(c.contact.k1, 1.0e6);
-  EXPECT_DOUBLE_EQ(c.contact.restitution, 0.9);
+  EXPECT_DOUBLE_EQ(c.contact.parameters.at("k1"), 1.0e6);
+  EXPECT_DOUBLE_EQ(c.contact.parameters.at("restitution"), 0.9);
   EXPECT_DOUBLE_EQ(c.contact.friction, 0.5);
-  EXPECT_DOUBLE_EQ(c.walls[2].restitution, 0.8);
+  EXPECT_DOUBLE_EQ(c.walls[2].contact.at("restitution"), 0.8);
   EXPECT_DOUBLE_EQ(c.walls[2].friction, 0.3);
   EXPECT_EQ(c.particles.seed, 3u);
   EXPECT_FALSE(c.drive.enabled);
@@ -333,10 +333,10 @@ TEST(CaseLoader, SetOverridesChangeValues) {
   EXPECT_EQ(c.domain.faces[3], FaceKind::wall);
   EXPECT_EQ(c.particles.seed, 11u);
   EXPECT_DOUBLE_EQ(c.contact.friction, 0.25);
-  EXPECT_DOUBLE_EQ(c.contact.k1, 1.0e6);  // untouched keys keep the file's values
+  EXPECT_DOUBLE_EQ(c.contact.parameters.at("k1"), 1.0e6);  // untouched keys keep the file's values
 
   const CaseConfig k = load_case_from_string(kMinimal, kLabel, {"contact.k1=2e6"});
-  EXPECT_DOUBLE_EQ(k.contact.k1, 2e6);
+  EXPECT_DOUBLE_EQ(k.contact.parameters.at("k1"), 2e6);
   // A table that the file does not have is created by --set (here a whole drive).
   const CaseConfig d = load_case_from_string(kMinimal, kLabel,
                                              {"drive.amplitude=[0, 0.001, 0]", "drive.frequency=[0, 30, 0]", "drive.start=0.5"});

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "grainflow/core/case_loader.hpp"
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 
 using namespace grainflow;
 

@@ -13,7 +13,7 @@
 #include <variant>
 
 #include "grainflow/core/case_loader.hpp"
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 #include "test_support.hpp"
 
 using namespace grainflow;
@@ -70,7 +70,7 @@ GasRun run_gas(int collision_steps, double duration, int seed) {
   GasRun out;
   std::visit([&](auto& e) {
     const auto& p = e.state().particles;
-    const double k1 = c.contact.k1;
+    const double k1 = c.contact.parameters.at("k1");
     const std::size_t n = p.size();
     auto energy = [&] {
       double kinetic = 0.0, spring = 0.0;

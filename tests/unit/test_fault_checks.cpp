@@ -18,7 +18,7 @@
 #include "grainflow/app/edmd_run.hpp"
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/core/error.hpp"
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/dem/fault_checks.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
@@ -127,8 +127,8 @@ TEST(FaultChecks, DemEngineNamesTheParticleStepAndTimeOfANonFiniteState) {
           EXPECT_NE(full.find("is too large for k1 = 1e+06 N/m"), std::string::npos) << full;
           char suggested[64];
           std::snprintf(suggested, sizeof suggested, "suggests dt <= %.4g s",
-                        dem::walton_braun_time_step(0.9, 20, 1.0e6, d.reference_mass));
-          EXPECT_NE(full.find("eq. (2-5-4) with n = 20 steps per collision"), std::string::npos) << full;
+                        dem::WaltonBraun::time_step(dem::WaltonBraun::make(1.0e6, 0.9, 1.0, 0.0), d.reference_mass, 20));
+          EXPECT_NE(full.find("time-step bound with n = 20 steps per collision"), std::string::npos) << full;
           EXPECT_NE(full.find(suggested), std::string::npos) << full << " lacks " << suggested;
         }
       },

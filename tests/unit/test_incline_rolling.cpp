@@ -11,7 +11,7 @@
 #include <string>
 #include <variant>
 
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 #include "test_support.hpp"
 
 using namespace grainflow;

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "grainflow/core/case_loader.hpp"
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
 #include "test_support.hpp"
 

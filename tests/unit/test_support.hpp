@@ -13,7 +13,7 @@
 #include <unistd.h>
 
 #include "grainflow/core/case_loader.hpp"
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/dem_state.hpp"
 
 namespace grainflow::test {

@@ -9,7 +9,7 @@
 #include <variant>
 #include <vector>
 
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/walton_braun.hpp"
 #include "test_support.hpp"
 

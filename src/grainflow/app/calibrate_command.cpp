@@ -13,6 +13,7 @@
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
+#include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/flat_json_reader.hpp"
@@ -48,16 +49,31 @@ void check_options(const CalibrateOptions& o) {
 }
 
 // The case as far as calibrate needs it before choosing K1 (engine, model, the Hertz-equivalent
-// K1). contact.k1 may be absent from the case: calibrate sets it, so a placeholder stands in here.
+// K1). The law's stiffness (contact.k1) may be absent from the case: calibrate sets it, so a
+// placeholder stands in here.
 CaseConfig probe_case(const std::string& path, const std::vector<std::string>& overrides) {
   try {
     return load_case_unvalidated(path, overrides);
   } catch (const InputError& e) {
-    if (e.key() != "contact.k1") throw;
-    std::vector<std::string> with_k1 = overrides;
-    with_k1.push_back("contact.k1=1");
-    return load_case_unvalidated(path, with_k1);
+    std::string placeholder;
+    dem::for_each_contact_law([&]<dem::ContactLaw Law>() {
+      if (Law::calibrated_by_stiffness && e.key() == "contact." + std::string(Law::stiffness_key))
+        placeholder = e.key() + "=1";
+    });
+    if (placeholder.empty()) throw;
+    std::vector<std::string> with_stiffness = overrides;
+    with_stiffness.push_back(placeholder);
+    return load_case_unvalidated(path, with_stiffness);
   }
+}
+
+// The laws whose stiffness calibrate may choose, for its error message.
+std::string calibrated_law_names() {
+  std::string names;
+  dem::for_each_contact_law([&]<dem::ContactLaw Law>() {
+    if (Law::calibrated_by_stiffness) names += (names.empty() ? "" : ", ") + std::string(Law::name);
+  });
+  return names;
 }
 
 // Trial folders of an earlier calibration into the same folder (trial_ and digits).
@@ -87,11 +103,13 @@ int run_calibration(const CalibrateOptions& o) {
     throw InputError(o.case_path, "engine.kind",
                      "calibrate chooses the soft-sphere (dem) contact stiffness; event-driven hard spheres do not "
                      "overlap");
-  if (probe.contact.model != "walton_braun")
-    throw InputError(o.case_path, "contact.model",
-                     "calibrate chooses the Walton–Braun loading stiffness contact.k1 (Lan 1994 section 4.1.3); "
-                     "linear_dashpot cases are not supported");
   const dem::DerivedQuantities probe_derived = dem::derive(probe);
+  if (!probe_derived.calibrated_by_stiffness)
+    throw InputError(o.case_path, "contact.model",
+                     "calibrate chooses the loading stiffness of a law whose restitution does not change with it "
+                     "(Lan 1994 section 4.1.3: " + calibrated_law_names() + "); contact.model = \"" + probe.contact.model +
+                         "\" is not supported");
+  const std::string stiffness_key = "contact." + probe_derived.stiffness_key;
   const std::optional<double> hertz_k1 = probe_derived.hertz_k1;
   const auto& reference = probe.species[probe_derived.reference_species];
 
@@ -119,7 +137,7 @@ int run_calibration(const CalibrateOptions& o) {
 
   auto trial_case = [&](double k1) {
     std::vector<std::string> overrides = o.overrides;
-    overrides.push_back("contact.k1=" + exact(k1));
+    overrides.push_back(stiffness_key + "=" + exact(k1));
     overrides.push_back("run.duration=" + exact(duration));
     overrides.push_back("run.halt_overlap=" + exact(o.limit));
     CaseConfig c = load_case(o.case_path, overrides);

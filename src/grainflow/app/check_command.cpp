@@ -68,16 +68,7 @@ void print_check(const CaseConfig& c, std::ostream& out) {
     out << fmt::format("  species {:<18}  d = {:.6g} m, rho = {:.6g} kg/m^3, mass = {:.6g} kg, count = {}{}\n", s.name,
                        s.diameter, s.density, s.mass(), s.count, s.frozen ? " (frozen)" : "");
   out << fmt::format("  contact model               {}\n", d.model);
-  if (d.model == "walton_braun") {
-    out << fmt::format("  K1 (loading)                {:.6g} N/m\n", d.k1);
-    out << fmt::format("  K2 = K1/e^2 (unloading)     {:.6g} N/m\n", d.k2);
-    out << fmt::format("  e = sqrt(K1/K2)             {:.6g}\n", d.restitution);
-    out << fmt::format("  K0 = ratk K1 (tangential)   {:.6g} N/m\n", d.tangential_stiffness);
-  } else {
-    out << fmt::format("  kn, kt                      {:.6g}, {:.6g} N/m\n", d.k1, d.tangential_stiffness);
-    out << fmt::format("  gamma_n, gamma_t            {:.6g}, {:.6g} 1/s\n", c.contact.gamma_n, c.contact.gamma_t);
-    out << fmt::format("  e (binary, closed form)     {:.6g}\n", d.restitution);
-  }
+  for (const auto& line : d.law_lines) out << fmt::format("  {:<28}{}\n", line.label, line.value);
   out << fmt::format("  contact duration (binary)   {:.6g} s  (reference species '{}', m = {:.6g} kg)\n", d.contact_duration,
                      ref.name, d.reference_mass);
   out << fmt::format("  time step                   {:.6g} s  ({}; n = {:.4g} in eq. 2-5-4, {:.3g} steps per contact)\n",
@@ -94,7 +85,7 @@ void print_check(const CaseConfig& c, std::ostream& out) {
   }
   if (d.hertz_k1)
     out << fmt::format("  Hertz-equivalent K1         {:.6g} N/m  (eqs. 2-5-5..2-5-9, E = {:.6g} Pa, nu = {:.3g}; K1 / K1_H = {:.3g})\n",
-                       *d.hertz_k1, ref.youngs_modulus, ref.poisson_ratio, d.k1 / *d.hertz_k1);
+                       *d.hertz_k1, ref.youngs_modulus, ref.poisson_ratio, d.normal_stiffness / *d.hertz_k1);
   out << fmt::format("  mass hold-up m_t            {:.6g}  (eq. 4-1-3)\n", d.mass_holdup);
 }
 

@@ -18,7 +18,7 @@
 
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
-#include "grainflow/dem/contact_laws.hpp"
+#include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/fault_checks.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/hdf5_file.hpp"

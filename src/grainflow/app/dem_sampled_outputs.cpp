@@ -61,7 +61,7 @@ TrajectoryOutput::TrajectoryOutput(const CaseConfig& c, const dem::DerivedQuanti
     file->attribute("/", "window", window);
     file->attribute("/", "samples_requested", static_cast<std::int64_t>(t.samples));
     file->attribute("/", "max_lag", static_cast<std::int64_t>(t.max_lag > 0 ? t.max_lag : t.samples / 2));
-    file->attribute("/", "restitution", c.contact.restitution);
+    file->attribute("/", "restitution", d.restitution);  // the binary contact's, for Savage–Dai's D
     const auto n = static_cast<unsigned long long>(ids.size());
     time = file->growing("/time", {}, 1024);
     velocity = file->growing("/velocity", {n, 3}, 16);

@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
   double calibrate_duration = 0.0, calibrate_start_k1 = 0.0;
   auto* calibrate =
       app.add_subcommand("calibrate", "find the smallest K1 that keeps the max overlap <= 1% d (Lan 4.1.3)");
-  calibrate->add_option("case", calibrate_options.case_path, "case file (TOML, DEM, walton_braun)")->required();
+  calibrate->add_option("case", calibrate_options.case_path, "case file (TOML, DEM, a law calibrate can vary)")->required();
   calibrate->add_option("-o,--output", calibrate_options.output_directory,
                         "output folder (default: runs/calibrate_<case name>)");
   auto* duration_option =

@@ -13,7 +13,7 @@
 #include "grainflow/core/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
-#include "grainflow/dem/linear_dashpot.hpp"
+#include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/flat_json_reader.hpp"
 
@@ -79,13 +79,14 @@ TheoryInputs theory_inputs(const CaseConfig& c) {
     p.floor_restitution = w.restitution >= 0.0 ? w.restitution : c.collision.wall_restitution;
     if (c.collision.tangential_restitution != -1.0 || w.condition != "smooth")
       in.notes.push_back("rough collisions (collision.tangential_restitution or a rough floor) are treated as smooth");
-  } else if (c.contact.model == "walton_braun") {
-    p.restitution = c.contact.restitution;
-    p.floor_restitution = w.restitution > 0.0 ? w.restitution : c.contact.restitution;  // as dem/initial_state.cpp
   } else {
-    p.restitution = d.restitution;  // binary head-on contact
-    dem::LinearDashpot::Params wall{c.contact.kn, 0.0, w.gamma_n >= 0.0 ? w.gamma_n : c.contact.gamma_n, 0.0, 0.0};
-    p.floor_restitution = dem::LinearDashpot::restitution(wall, s.mass());  // a sphere against an immovable wall
+    // The contact law's closed forms: a head-on pair of reference spheres, and one against the
+    // immovable floor.
+    dem::visit_contact_law(c.contact.model, [&]<dem::ContactLaw Law>() {
+      const typename Law::Params pair = Law::pair_params(c.contact, s);
+      p.restitution = Law::binary_contact(pair, 0.5 * d.reference_mass).restitution;
+      p.floor_restitution = Law::binary_contact(Law::wall_params(pair, w.contact, 0.0), s.mass()).restitution;
+    });
   }
   if (!edmd && (c.contact.friction > 0.0 || w.friction > 0.0))
     in.notes.push_back("friction is ignored: the theory is for smooth spheres");

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "grainflow/core/contact_parameters.hpp"
 #include "grainflow/core/vec3.hpp"
 
 namespace grainflow {
@@ -65,17 +66,9 @@ struct ParticlesConfig {
 
 struct ContactConfig {
   bool operator==(const ContactConfig&) const = default;  // the case writer's round-trip test
-  std::string model = "walton_braun";  // walton_braun | linear_dashpot
-  // walton_braun
-  double k1 = 0.0;           // N/m
-  double restitution = 0.9;  // e = sqrt(k1/k2)
-  double ratk = -1.0;        // K0/K1; < 0: Mindlin's 2(1-nu)/(2-nu) with nu of the species or 0.3
-  // linear_dashpot (LAMMPS gran/hooke/history)
-  double kn = 0.0;       // N/m
-  double kt = -1.0;      // N/m; < 0: 2/7 kn
-  double gamma_n = 0.0;  // 1/s
-  double gamma_t = -1.0; // 1/s; < 0: gamma_n / 2 (LAMMPS default)
-  double friction = 0.0; // mu between particles
+  std::string model;             // a registered law (dem/contact_law_registry.hpp); absent: the first
+  double friction = 0.0;         // Coulomb coefficient mu between particles, for every law
+  ContactParameters parameters;  // the law's own keys, as its file reads them
 };
 
 // Event-driven collisions (engine.kind = "edmd"), Campbell 1982 sections 2.11-2.12.
@@ -108,9 +101,9 @@ struct ServoConfig {
 
 struct WallConfig {
   bool operator==(const WallConfig&) const = default;  // the case writer's round-trip test
-  double restitution = -1.0;  // walton_braun; < 0: the particles' value (also for the bumps)
+  double restitution = -1.0;  // edmd walls; < 0: collision.wall_restitution
   double friction = -1.0;     // < 0: the particles' value (also for the bumps)
-  double gamma_n = -1.0;      // linear_dashpot walls; < 0: the particles' value
+  ContactParameters contact;  // dem walls: the contact law's own wall keys (also for the bumps)
   std::string condition = "smooth";  // edmd walls: smooth | rough | no_slip (Campbell's Couette walls)
   Vec3 velocity;              // m/s, constant velocity of the wall (a drive adds to it)
   // bumpy walls: fixed half-spheres centred on the wall plane (section 2.6.3)

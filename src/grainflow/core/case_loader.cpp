@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "grainflow/core/case_validation.hpp"
+#include "grainflow/core/contact_schema.hpp"
+#include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/toml_reader.hpp"
 #include "grainflow/io/particle_csv.hpp"
@@ -75,7 +77,20 @@ void read_sampling(TomlReader& r, double& start, long long& samples, long long f
   if (samples > 100000000) r.fail("samples", "more than 10^8 samples is surely a mistake");
 }
 
-CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden) {
+// A key of another registered contact law is named as such rather than as unknown.
+void reject_other_laws_keys(TomlReader& r, ContactSchemas schemas, const ContactSchema& law,
+                            std::span<const std::string_view> ContactSchema::*keys) {
+  for (const auto& other : schemas)
+    for (std::string_view key : other.*keys) {
+      const std::string name(key);
+      if (!r.has(name) || std::find(std::begin(law.*keys), std::end(law.*keys), key) != std::end(law.*keys)) continue;
+      r.fail(name, "belongs to contact.model = \"" + std::string(other.name) + "\"; \"" + std::string(law.name) +
+                       "\" does not take it");
+    }
+}
+
+CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden,
+                 ContactSchemas schemas) {
   CaseConfig c;
   c.path = file;
   TomlReader top(file, &root, "", &overridden);
@@ -169,28 +184,13 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (top.has("collision")) top.fail("collision", "is for engine.kind = \"edmd\"; the DEM engine takes [contact]");
     TomlReader r = top.table("contact");
     auto& k = c.contact;
-    k.model = r.string("model", k.model);
-    if (k.model != "walton_braun" && k.model != "linear_dashpot")
-      r.fail("model", "unknown contact model '" + k.model + "' (valid: walton_braun, linear_dashpot)");
+    k.model = r.string("model", std::string(schemas.front().name));
+    const ContactSchema* law = find_schema(schemas, k.model);
+    if (!law) r.fail("model", "unknown contact model '" + k.model + "' (valid: " + schema_names(schemas) + ")");
     k.friction = r.number("friction", 0.0);
     if (k.friction < 0.0) r.fail("friction", "must not be negative");
-    if (k.model == "walton_braun") {
-      k.k1 = r.required_number("k1");
-      if (!(k.k1 > 0.0)) r.fail("k1", "must be positive");
-      k.restitution = r.number("restitution", k.restitution);
-      if (!(k.restitution > 0.0 && k.restitution <= 1.0)) r.fail("restitution", "must lie in (0, 1]");
-      k.ratk = r.number("ratk", -1.0);
-      if (r.has("ratk") && !(k.ratk > 0.0)) r.fail("ratk", "must be positive");
-    } else {
-      k.kn = r.required_number("kn");
-      if (!(k.kn > 0.0)) r.fail("kn", "must be positive");
-      k.kt = r.number("kt", 2.0 / 7.0 * k.kn);
-      if (k.kt < 0.0) r.fail("kt", "must not be negative");
-      k.gamma_n = r.number("gamma_n", 0.0);
-      if (k.gamma_n < 0.0) r.fail("gamma_n", "must not be negative");
-      k.gamma_t = r.number("gamma_t", 0.5 * k.gamma_n);
-      if (k.gamma_t < 0.0) r.fail("gamma_t", "must not be negative");
-    }
+    reject_other_laws_keys(r, schemas, *law, &ContactSchema::keys);
+    law->read(r, k.parameters);
     r.reject_unknown_keys();
   }
   if (c.engine.kind == "edmd") {
@@ -235,22 +235,22 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
       TomlReader r = walls.table(kFaceNames[f]);
       WallConfig& w = c.walls[f];
       const bool edmd = c.engine.kind == "edmd";
-      const bool linear = !edmd && c.contact.model == "linear_dashpot";
-      if (linear && r.has("restitution")) r.fail("restitution", "linear_dashpot walls take gamma_n, not restitution");
-      if (!linear && r.has("gamma_n")) r.fail("gamma_n", "only linear_dashpot walls take gamma_n");
       w.condition = r.string("condition", "smooth");
       if (r.has("condition") && !edmd) r.fail("condition", "wall conditions are for the event-driven engine");
       if (w.condition != "smooth" && w.condition != "rough" && w.condition != "no_slip")
         r.fail("condition", "must be \"smooth\", \"rough\" or \"no_slip\"");
-      w.restitution = r.number("restitution", -1.0);
-      // A hard wall may be perfectly plastic (e = 0); a soft-sphere wall needs a finite K2.
-      const double lowest = edmd ? 0.0 : std::nextafter(0.0, 1.0);
-      if (r.has("restitution") && !(w.restitution >= lowest && w.restitution <= 1.0))
-        r.fail("restitution", edmd ? "must lie in [0, 1]" : "must lie in (0, 1]");
+      if (edmd) {
+        // A hard wall may be perfectly plastic (e = 0).
+        w.restitution = r.number("restitution", -1.0);
+        if (r.has("restitution") && !(w.restitution >= 0.0 && w.restitution <= 1.0))
+          r.fail("restitution", "must lie in [0, 1]");
+      } else {
+        const ContactSchema& law = *find_schema(schemas, c.contact.model);
+        reject_other_laws_keys(r, schemas, law, &ContactSchema::wall_keys);
+        law.read_wall(r, w.contact);
+      }
       w.friction = r.number("friction", -1.0);
       if (r.has("friction") && w.friction < 0.0) r.fail("friction", "must not be negative");
-      w.gamma_n = r.number("gamma_n", -1.0);
-      if (r.has("gamma_n") && w.gamma_n < 0.0) r.fail("gamma_n", "must not be negative");
       w.velocity = r.vec3("velocity", {});
       w.bump_diameter = r.number("bump_diameter", 0.0);
       if (r.has("bump_diameter") && !(w.bump_diameter > 0.0)) r.fail("bump_diameter", "must be positive");
@@ -506,7 +506,7 @@ CaseConfig load_from_table(toml::table& root, const std::string& label, const st
                            const std::filesystem::path& base_dir, bool validate = true) {
   std::set<std::string> overridden;
   for (const auto& assignment : overrides) overridden.insert(apply_override(root, assignment, label));
-  CaseConfig c = parse(root, label, overridden);
+  CaseConfig c = parse(root, label, overridden, dem::contact_schemas());
   c.overrides = overrides;
   if (c.particles.init == "file") read_initial_particles(c, base_dir);
   if (validate) validate_case(c);

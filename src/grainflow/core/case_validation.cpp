@@ -38,8 +38,7 @@ void validate_dem(const CaseConfig& c) {
   const dem::DerivedQuantities d = dem::derive(c);
 
   if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");
-  if (c.contact.model == "linear_dashpot" && d.contact_duration <= 0.0)
-    fail(c, "contact.gamma_n", "the contact is overdamped (gamma_n >= 2 sqrt(kn / m_eff)): spheres would never separate");
+  if (d.law_problem) fail(c, "contact." + d.law_problem->key, d.law_problem->reason);
   if (d.steps_per_contact < kMinStepsPerContact) {
     const double suggested = d.contact_duration / kMinStepsPerContact;
     fail(c, d.time_step_from_case ? "run.time_step" : "run.collision_steps",

@@ -117,16 +117,7 @@ void write_contact(Out& o, const ContactConfig& k) {
   o.table("contact");
   o.text_key("model", k.model);
   o.key("friction", k.friction);
-  if (k.model == "walton_braun") {
-    o.key("k1", k.k1);
-    o.key("restitution", k.restitution);
-    if (k.ratk > 0.0) o.key("ratk", k.ratk);
-  } else {
-    o.key("kn", k.kn);
-    o.key("kt", k.kt);
-    o.key("gamma_n", k.gamma_n);
-    o.key("gamma_t", k.gamma_t);
-  }
+  for (const auto& [key, value] : k.parameters.entries()) o.key(key, value);
 }
 
 void write_collision(Out& o, const CollisionConfig& k) {
@@ -144,16 +135,15 @@ void write_collision(Out& o, const CollisionConfig& k) {
 
 void write_walls(Out& o, const CaseConfig& c) {
   const bool edmd = c.engine.kind == "edmd";
-  const bool linear = !edmd && c.contact.model == "linear_dashpot";
   for (int f = 0; f < 6; ++f) {
     const FaceKind kind = c.domain.faces[f];
     if (kind == FaceKind::periodic || kind == FaceKind::open) continue;
     const WallConfig& w = c.walls[f];
     o.table(std::string("walls.") + kFaceNames[f]);
     if (edmd) o.text_key("condition", w.condition);
-    if (!linear && w.restitution >= 0.0) o.key("restitution", w.restitution);
+    if (edmd && w.restitution >= 0.0) o.key("restitution", w.restitution);
+    for (const auto& [key, value] : w.contact.entries()) o.key(key, value);
     if (w.friction >= 0.0) o.key("friction", w.friction);
-    if (linear && w.gamma_n >= 0.0) o.key("gamma_n", w.gamma_n);
     o.key("velocity", vec(w.velocity));
     if (kind == FaceKind::bumpy) {
       if (w.bump_diameter > 0.0) o.key("bump_diameter", w.bump_diameter);

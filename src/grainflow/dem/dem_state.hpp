@@ -21,9 +21,7 @@ struct FlatWall {
   WallMotion motion;
   double position = 0.0;        // m, current plane coordinate
   Vec3 velocity;                // m/s, current
-  double restitution = 1.0;     // walton_braun: k2 = k1 / e^2
-  double friction = 0.0;
-  double gamma_n = 0.0;         // linear_dashpot
+  double friction = 0.0;        // the contact law's own wall keys are in the case (WallConfig::contact)
   bool bumpy = false;           // backing plane of a bumpy wall
 
   void move_to(double t) {

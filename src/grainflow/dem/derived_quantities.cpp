@@ -3,17 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grainflow/dem/contact_law_registry.hpp"
+
 namespace grainflow::dem {
 
-
-
-double walton_braun_time_step(double restitution, int collision_steps, double k1, double mass) {
-  return M_PI * restitution / collision_steps * std::sqrt(mass / (2.0 * k1));
-}
-
-double walton_braun_contact_duration(double k1, double k2, double effective_mass) {
-  return 0.5 * M_PI * (std::sqrt(effective_mass / k1) + std::sqrt(effective_mass / k2));
-}
 
 double hertz_max_overlap(double youngs_modulus, double poisson_ratio, double diameter, double mass, double speed) {
   const double base = 15.0 * mass * speed * speed * (1.0 - poisson_ratio * poisson_ratio) /
@@ -46,28 +39,28 @@ DerivedQuantities derive(const CaseConfig& c) {
   d.reference_mass = lightest;
   d.reference_diameter = ref.diameter;
 
-  const double pair_mass = 0.5 * d.reference_mass;
-  if (c.contact.model == "walton_braun") {
-    d.k1 = c.contact.k1;
-    d.restitution = c.contact.restitution;
-    d.k2 = d.k1 / (d.restitution * d.restitution);
-    d.contact_duration = walton_braun_contact_duration(d.k1, d.k2, pair_mass);
-    d.time_step = walton_braun_time_step(d.restitution, c.run.collision_steps, d.k1, d.reference_mass);
-  } else {
-    d.k1 = d.k2 = c.contact.kn;
-    const double omega0_sq = c.contact.kn / pair_mass;
-    const double omega_sq = omega0_sq - 0.25 * c.contact.gamma_n * c.contact.gamma_n;
-    d.contact_duration = omega_sq > 0.0 ? M_PI / std::sqrt(omega_sq) : 0.0;
-    d.restitution = omega_sq > 0.0 ? std::exp(-0.5 * c.contact.gamma_n * d.contact_duration) : 0.0;
-    d.time_step = d.contact_duration / c.run.collision_steps;
-  }
+  visit_contact_law(c.contact.model, [&]<ContactLaw Law>() {
+    const typename Law::Params p = Law::pair_params(c.contact, ref);
+    const double pair_mass = 0.5 * d.reference_mass;
+    const BinaryContact binary = Law::binary_contact(p, pair_mass);
+    d.stiffness_key = Law::stiffness_key;
+    d.calibrated_by_stiffness = Law::calibrated_by_stiffness;
+    d.normal_stiffness = Law::loading_stiffness(p);
+    d.tangential_stiffness = Law::tangential_stiffness(p);
+    d.restitution = binary.restitution;
+    d.contact_duration = binary.duration;
+    d.law_lines = Law::describe(p, pair_mass);
+    d.law_problem = Law::problem(p, pair_mass);
+    d.time_step = Law::time_step(p, d.reference_mass, c.run.collision_steps);
+    d.time_step_lan = Law::time_step(p, d.reference_mass, kLanCollisionSteps);
+  });
   if (c.run.time_step > 0.0) {
     d.time_step = c.run.time_step;
     d.time_step_from_case = true;
   }
   d.steps_per_contact = d.contact_duration > 0.0 ? d.contact_duration / d.time_step : 0.0;
   // n of eq. (2-5-4) for the step in use: n = pi e sqrt(m / 2K1) / dt.
-  d.collision_steps = M_PI * d.restitution * std::sqrt(d.reference_mass / (2.0 * d.k1)) / d.time_step;
+  d.collision_steps = M_PI * d.restitution * std::sqrt(d.reference_mass / (2.0 * d.normal_stiffness)) / d.time_step;
 
   // Gravity axis: the axis with the largest gravity component (y when there is none).
   d.gravity_magnitude = norm(c.gravity);
@@ -113,21 +106,10 @@ DerivedQuantities derive(const CaseConfig& c) {
     if (d.gravity_magnitude > 0.0) d.shaking_acceleration = c.drive.amplitude[g] * omega * omega / d.gravity_magnitude;
   }
   // A sphere hitting the (infinitely heavy) floor at its peak speed: alpha = v sqrt(m / K1).
-  d.expected_floor_overlap = d.floor_peak_speed * std::sqrt(d.reference_mass / d.k1);
+  d.expected_floor_overlap = d.floor_peak_speed * std::sqrt(d.reference_mass / d.normal_stiffness);
   if (ref.youngs_modulus > 0.0 && d.floor_peak_speed > 0.0)
     d.hertz_k1 = hertz_equivalent_k1(ref.youngs_modulus, ref.poisson_ratio, ref.diameter, d.reference_mass,
                                      d.floor_peak_speed);
-
-  if (c.contact.model == "walton_braun") {
-    double ratk = c.contact.ratk;
-    if (ratk <= 0.0) {
-      const double nu = ref.poisson_ratio >= 0.0 ? ref.poisson_ratio : 0.3;
-      ratk = 2.0 * (1.0 - nu) / (2.0 - nu);
-    }
-    d.tangential_stiffness = ratk * d.k1;
-  } else {
-    d.tangential_stiffness = c.contact.kt;
-  }
 
   // Mass hold-up over the floor area normal to gravity (eq. 4-1-3): m_t = sum(pi d^3/6) / (A d).
   double area = 1.0;

@@ -8,26 +8,33 @@
 #include <vector>
 
 #include "grainflow/core/case_config.hpp"
+#include "grainflow/dem/contact_law.hpp"
 
 namespace grainflow::dem {
 
-// eq. (2-5-4): dt = (pi e / n) sqrt(m / (2 K1)).
-double walton_braun_time_step(double restitution, int collision_steps, double k1, double mass);
-// Duration of a Walton–Braun binary contact: loading quarter-period on K1 plus unloading on K2.
-double walton_braun_contact_duration(double k1, double k2, double effective_mass);
 // eq. (2-5-8): maximum Hertz overlap for an impact at `speed` of a sphere of `mass` and `diameter`.
 double hertz_max_overlap(double youngs_modulus, double poisson_ratio, double diameter, double mass, double speed);
 // K1 = m (v_max / alpha_max)^2 (after eq. 2-5-9).
 double hertz_equivalent_k1(double youngs_modulus, double poisson_ratio, double diameter, double mass, double speed);
 
+inline constexpr int kLanCollisionSteps = 20;  // steps per collision Lan recommends (section 2.5)
+
 struct DerivedQuantities {
   int reference_species = 0;        // the lightest moving species: it sets the time step
   double reference_mass = 0.0;      // kg
   double reference_diameter = 0.0;  // m
+  // The contact law's (contact.model): its closed forms for two reference spheres.
   std::string model;
-  double k1 = 0.0, k2 = 0.0, restitution = 0.0, tangential_stiffness = 0.0;  // N/m
+  std::string stiffness_key;             // contact.KEY of the normal stiffness (k1, kn)
+  bool calibrated_by_stiffness = false;  // `grainflow calibrate` may choose that key
+  double normal_stiffness = 0.0;         // N/m, loading stiffness: overlap estimates v sqrt(m / k)
+  double tangential_stiffness = 0.0;     // N/m
+  double restitution = 0.0;              // binary head-on contact
   double contact_duration = 0.0;         // s, binary contact of two reference spheres
-  double time_step = 0.0;                // s, as used
+  std::vector<CheckLine> law_lines;      // what `grainflow check` prints of the law
+  std::optional<ParameterProblem> law_problem;  // parameters the law cannot run
+  double time_step = 0.0;                // s, as used: the law's bound with run.collision_steps, or run.time_step
+  double time_step_lan = 0.0;            // s, the law's bound with Lan's n = 20 steps per collision
   bool time_step_from_case = false;
   double steps_per_contact = 0.0;        // contact_duration / time_step
   double collision_steps = 0.0;          // n of eq. (2-5-4) for the time step used

@@ -58,16 +58,15 @@ inline std::optional<std::size_t> first_non_finite(const ParticleStore& p) {
   return std::nullopt;
 }
 
-// The likely cause of a blow-up: the time step against eq. (2-5-4), dt = (pi e / n) sqrt(m / (2 K1))
-// with n = 20 steps per collision (Lan 1994), for the lightest moving species.
-inline std::string time_step_cause(const DerivedQuantities& d, int collision_steps = 20) {
-  const double e = d.restitution > 0.0 ? d.restitution : 1.0;
-  const double suggested = walton_braun_time_step(e, collision_steps, d.k1, d.reference_mass);
+// The likely cause of a blow-up: the time step against the contact law's bound (eq. 2-5-4 for
+// Walton–Braun) with n = 20 steps per collision (Lan 1994), for the lightest moving species.
+inline std::string time_step_cause(const DerivedQuantities& d) {
   std::string text = "likely cause: the time step dt = " + fault_detail::format("%.4g", d.time_step) +
-                     " s is too large for k1 = " + fault_detail::format("%.4g", d.k1) + " N/m (" +
-                     fault_detail::format("%.3g", d.steps_per_contact) + " steps per contact); eq. (2-5-4) with n = " +
-                     std::to_string(collision_steps) + " steps per collision suggests dt <= " +
-                     fault_detail::format("%.4g", suggested) + " s";
+                     " s is too large for " + d.stiffness_key + " = " + fault_detail::format("%.4g", d.normal_stiffness) +
+                     " N/m (" + fault_detail::format("%.3g", d.steps_per_contact) +
+                     " steps per contact); the contact law's time-step bound with n = " +
+                     std::to_string(kLanCollisionSteps) + " steps per collision suggests dt <= " +
+                     fault_detail::format("%.4g", d.time_step_lan) + " s";
   text += d.time_step_from_case ? " (lower run.time_step or remove it)" : " (raise run.collision_steps)";
   return text;
 }
@@ -114,15 +113,15 @@ inline void check_escape(const DemState& s, const DerivedQuantities& d) {
   const double speed = norm(p.velocity[i]);
   // A linear spring stopped from speed v penetrates v sqrt(m / K1); to keep that below 1% of d
   // (Lan's criterion) K1 >= m (v / 0.01 d)^2.
-  const double penetration = speed * std::sqrt(m / d.k1);
+  const double penetration = speed * std::sqrt(m / d.normal_stiffness);
   const double needed_k1 = m * std::pow(speed / (0.02 * r), 2);
   std::string text = describe_particle(s, i) + " went through the " + kFaceNames[wall.face] + " wall at t = " +
                      fault_detail::format("%.9g", s.time) + " s: its centre lies " +
                      fault_detail::format("%.4g", escape->beyond) + " m beyond the wall (more than a diameter, " +
                      fault_detail::format("%.4g", 2.0 * r) + " m); likely cause: too soft a wall or too large a time step "
-                     "for the impact speed: at " + fault_detail::format("%.4g", speed) + " m/s a wall with k1 = " +
-                     fault_detail::format("%.4g", d.k1) + " N/m lets it in " + fault_detail::format("%.4g", penetration) +
-                     " m; keeping that below 1% of d needs k1 >= " + fault_detail::format("%.4g", needed_k1) +
+                     "for the impact speed: at " + fault_detail::format("%.4g", speed) + " m/s a wall with " + d.stiffness_key + " = " +
+                     fault_detail::format("%.4g", d.normal_stiffness) + " N/m lets it in " + fault_detail::format("%.4g", penetration) +
+                     " m; keeping that below 1% of d needs " + d.stiffness_key + " >= " + fault_detail::format("%.4g", needed_k1) +
                      " N/m, and dt = " + fault_detail::format("%.4g", d.time_step) + " s moves it " +
                      fault_detail::format("%.4g", speed * d.time_step) + " m per step";
   throw RunError(text);
@@ -173,11 +172,12 @@ inline std::string overlap_halt_message(const DemState& s, const NeighborPairs& 
                                 std::to_string(id[now.j]);
     text += " (" + format("%.4g", now.ratio) + " of a diameter)";
   }
-  text += "; likely cause: too soft a contact (k1 = " + format("%.4g", d.k1) +
-          " N/m) for the impact speeds; Lan's 1 % criterion (overlap <= 0.01 d) suggests k1 >= " +
-          format("%.4g", d.k1 * std::pow(max_ratio / 0.01, 2)) + " N/m";
+  const std::string& key = d.stiffness_key;
+  text += "; likely cause: too soft a contact (" + key + " = " + format("%.4g", d.normal_stiffness) +
+          " N/m) for the impact speeds; Lan's 1 % criterion (overlap <= 0.01 d) suggests " + key + " >= " +
+          format("%.4g", d.normal_stiffness * std::pow(max_ratio / 0.01, 2)) + " N/m";
   if (halt_overlap != 0.01)
-    text += " (" + format("%.4g", d.k1 * std::pow(max_ratio / halt_overlap, 2)) + " N/m for the halt bound)";
+    text += " (" + format("%.4g", d.normal_stiffness * std::pow(max_ratio / halt_overlap, 2)) + " N/m for the halt bound)";
   text += ", or lower the impact speeds";
   return text;
 }

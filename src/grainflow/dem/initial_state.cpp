@@ -44,9 +44,7 @@ void add_walls(const CaseConfig& c, DemState& s) {
     wall.inward = face_is_high(f) ? -1.0 : 1.0;
     wall.base_position = face_is_high(f) ? c.domain.hi[wall.axis] : c.domain.lo[wall.axis];
     wall.motion = WallMotion(w.velocity, c.drive.enabled && c.drive.face == f ? &c.drive : nullptr);
-    wall.restitution = w.restitution > 0.0 ? w.restitution : c.contact.restitution;
     wall.friction = w.friction >= 0.0 ? w.friction : c.contact.friction;
-    wall.gamma_n = w.gamma_n >= 0.0 ? w.gamma_n : c.contact.gamma_n;
     wall.bumpy = kind == FaceKind::bumpy;
     wall.move_to(0.0);
     s.walls.push_back(wall);

@@ -1,15 +1,26 @@
 // Linear spring–dashpot with tangential history: the physics of LAMMPS `pair_style
 // gran/hooke/history`, parameterised the same way (kn, kt, gamma_n, gamma_t, mu), so one case can
 // be run in both codes. Damping is per unit effective mass: F_damp = -m_eff * gamma * v.
+// The case keys and closed forms are in linear_dashpot.cpp.
 #pragma once
 
+#include <array>
 #include <cmath>
+#include <optional>
+#include <string_view>
+#include <vector>
 
-#include "grainflow/dem/contact_kinematics.hpp"
+#include "grainflow/dem/contact_law.hpp"
 
 namespace grainflow::dem {
 
 struct LinearDashpot {
+  static constexpr std::string_view name = "linear_dashpot";
+  static constexpr std::array<std::string_view, 4> keys = {"kn", "kt", "gamma_n", "gamma_t"};
+  static constexpr std::array<std::string_view, 1> wall_keys = {"gamma_n"};
+  static constexpr std::string_view stiffness_key = "kn";
+  static constexpr bool calibrated_by_stiffness = false;  // kn at a fixed gamma_n would change e too
+
   struct Params {
     double kn = 0.0;        // N/m, normal stiffness
     double kt = 0.0;        // N/m, tangential stiffness
@@ -51,15 +62,22 @@ struct LinearDashpot {
     return out;
   }
 
-  // Closed forms for a head-on binary contact (no gravity): duration and restitution.
-  static double contact_duration(const Params& p, double effective_mass) {
-    const double omega0_sq = p.kn / effective_mass;
-    const double omega = std::sqrt(omega0_sq - 0.25 * p.gamma_n * p.gamma_n);
-    return M_PI / omega;
-  }
-  static double restitution(const Params& p, double effective_mass) {
-    return std::exp(-0.5 * p.gamma_n * contact_duration(p, effective_mass));
-  }
+  // [contact]: kn (required), kt (default 2/7 kn), gamma_n (0), gamma_t (gamma_n / 2, LAMMPS).
+  static void read(TomlReader& table, ContactParameters& out);
+  // [walls.FACE]: gamma_n (default the particles').
+  static void read_wall(TomlReader& table, ContactParameters& out);
+  static Params pair_params(const ContactConfig& contact, const SpeciesConfig& reference);
+  static Params wall_params(const Params& pair, const ContactParameters& wall, double friction);
+  // Overdamped (gamma_n >= 2 sqrt(kn / m_eff)): the spheres would never separate.
+  static std::optional<ParameterProblem> problem(const Params& p, double effective_mass);
+
+  // The damped oscillator's half period pi / sqrt(kn/m - gamma_n^2/4) and e = exp(-gamma_n t_c / 2).
+  static BinaryContact binary_contact(const Params& p, double effective_mass);
+  // A pair of the lightest spheres' contact in `collision_steps` steps.
+  static double time_step(const Params& p, double mass, int collision_steps);
+  static double loading_stiffness(const Params& p) { return p.kn; }
+  static double tangential_stiffness(const Params& p) { return p.kt; }
+  static std::vector<CheckLine> describe(const Params& p, double effective_mass);
 };
 
 }  // namespace grainflow::dem

@@ -2,22 +2,34 @@
 // loading stiffness K1, unloading/reloading stiffness K2 = K1/e^2, and the incremental
 // Mindlin–Deresiewicz-like tangential force with stiffness scaling `scalek` and Coulomb limit.
 //
-// Reference model: every other contact law follows this shape (Params, State, force()).
+// Reference model: every other contact law follows this shape (contact_law.hpp). The case keys
+// and closed forms are in walton_braun.cpp.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
+#include <string_view>
+#include <vector>
 
-#include "grainflow/dem/contact_kinematics.hpp"
+#include "grainflow/dem/contact_law.hpp"
 
 namespace grainflow::dem {
 
 struct WaltonBraun {
+  static constexpr std::string_view name = "walton_braun";
+  static constexpr std::array<std::string_view, 3> keys = {"k1", "restitution", "ratk"};
+  static constexpr std::array<std::string_view, 1> wall_keys = {"restitution"};
+  static constexpr std::string_view stiffness_key = "k1";
+  static constexpr bool calibrated_by_stiffness = true;  // Lan's calibration of K1 (section 4.1.3)
+
   struct Params {
-    double k1 = 0.0;        // N/m, loading stiffness
-    double k2 = 0.0;        // N/m, unloading stiffness, k1 / e^2 (eq. 2-4-12)
-    double k0 = 0.0;        // N/m, initial tangential stiffness, ratk * k1 (eq. 2-4-20)
-    double friction = 0.0;  // Coulomb coefficient mu
+    double k1 = 0.0;           // N/m, loading stiffness
+    double k2 = 0.0;           // N/m, unloading stiffness, k1 / e^2 (eq. 2-4-12)
+    double k0 = 0.0;           // N/m, initial tangential stiffness, ratk * k1 (eq. 2-4-20)
+    double friction = 0.0;     // Coulomb coefficient mu
+    double restitution = 1.0;  // e, kept exactly for the closed forms (k2 holds it rounded)
   };
 
   // Per-contact memory, kept while the pair overlaps and cleared on separation.
@@ -29,8 +41,25 @@ struct WaltonBraun {
   };
 
   static Params make(double k1, double restitution, double ratk, double friction) {
-    return {k1, k1 / (restitution * restitution), ratk * k1, friction};
+    return {k1, k1 / (restitution * restitution), ratk * k1, friction, restitution};
   }
+
+  // [contact]: k1 (required), restitution (default 0.9), ratk (default Mindlin's, below).
+  static void read(TomlReader& table, ContactParameters& out);
+  // [walls.FACE]: restitution (default the particles').
+  static void read_wall(TomlReader& table, ContactParameters& out);
+  // ratk defaults to Mindlin's 2 (1 - nu) / (2 - nu), nu of the reference species or 0.3.
+  static Params pair_params(const ContactConfig& contact, const SpeciesConfig& reference);
+  static Params wall_params(const Params& pair, const ContactParameters& wall, double friction);
+  static std::optional<ParameterProblem> problem(const Params&, double) { return std::nullopt; }
+
+  // Loading quarter-period on K1 plus unloading on K2; e = sqrt(K1 / K2) exactly.
+  static BinaryContact binary_contact(const Params& p, double effective_mass);
+  // eq. (2-5-4): dt = (pi e / n) sqrt(m / (2 K1)), m the lightest sphere.
+  static double time_step(const Params& p, double mass, int collision_steps);
+  static double loading_stiffness(const Params& p) { return p.k1; }
+  static double tangential_stiffness(const Params& p) { return p.k0; }
+  static std::vector<CheckLine> describe(const Params& p, double effective_mass);
 
   // Residual overlap alpha0 at which the unloading line K2 reaches zero force.
   static double residual_overlap(const Params& p, const State& s) {

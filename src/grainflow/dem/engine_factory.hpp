@@ -1,19 +1,23 @@
-// The table from case-file contact models to contact laws, and their parameters for particle
-// pairs and for each wall. Adding a law: its header, one entry in DemEngineVariant, one make_*.
+// The soft-sphere engine for a case: one DemEngine<Law> per registered contact law in a variant,
+// so the time loop is compiled once per law and the force loop inlines the law.
 #pragma once
 
 #include <variant>
-#include <vector>
 
 #include "grainflow/core/case_config.hpp"
+#include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/dem_engine.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
-#include "grainflow/dem/linear_dashpot.hpp"
-#include "grainflow/dem/walton_braun.hpp"
 
 namespace grainflow::dem {
 
-using DemEngineVariant = std::variant<DemEngine<WaltonBraun>, DemEngine<LinearDashpot>>;
+template <class List>
+struct EngineVariantOf;
+template <ContactLaw... Laws>
+struct EngineVariantOf<ContactLawList<Laws...>> {
+  using type = std::variant<DemEngine<Laws>...>;
+};
+using DemEngineVariant = EngineVariantOf<RegisteredContactLaws>::type;
 
 // Builds the engine for the case's contact model from an initial state; with `domain`, as one of
 // several MPI ranks (`state` is then the whole initial state, the same on every rank).

@@ -1,0 +1,71 @@
+// What a contact law is: a small value type the engine's force loop runs as a template parameter
+// (no virtual call per pair), which also carries its name, reads and checks its own case keys, turns
+// them into parameters, and states its closed forms. The ContactLaw concept lists it all; the
+// registry (contact_law_registry.hpp) names the laws a case may choose.
+#pragma once
+
+#include <concepts>
+#include <cstddef>
+#include <optional>
+#include <ranges>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "grainflow/core/case_config.hpp"
+#include "grainflow/core/contact_parameters.hpp"
+#include "grainflow/dem/contact_kinematics.hpp"
+
+namespace grainflow {
+class TomlReader;
+}
+
+namespace grainflow::dem {
+
+// A head-on binary contact without gravity, from the law's closed form: how long it lasts and the
+// ratio of separation to approach speed. A contact that never ends (overdamped) has an infinite
+// duration and restitution 0.
+struct BinaryContact {
+  double duration = 0.0;     // s
+  double restitution = 0.0;  // e
+};
+
+// One line of `grainflow check`'s contact part: a label and its formatted value.
+struct CheckLine {
+  std::string label, value;
+};
+
+// A parameter set the law cannot run, named by its key in [contact].
+struct ParameterProblem {
+  std::string key, reason;
+};
+
+template <class L>
+concept ContactLaw = requires(const typename L::Params& params, typename L::State& state, const ContactKinematics& kin,
+                              double number, int count, TomlReader& table, ContactParameters& read_into,
+                              const ContactParameters& wall, const ContactConfig& contact,
+                              const SpeciesConfig& species) {
+  // Identity and case keys.
+  { L::name } -> std::convertible_to<std::string_view>;
+  requires std::ranges::range<decltype(L::keys)>;       // [contact] keys besides model and friction
+  requires std::ranges::range<decltype(L::wall_keys)>;  // [walls.FACE] keys besides friction
+  { L::stiffness_key } -> std::convertible_to<std::string_view>;  // the key of the normal stiffness
+  { L::calibrated_by_stiffness } -> std::convertible_to<bool>;    // `grainflow calibrate` may vary it
+  { L::read(table, read_into) } -> std::same_as<void>;
+  { L::read_wall(table, read_into) } -> std::same_as<void>;
+  // Parameters of a run: between particles (the reference species gives material defaults), and
+  // against a wall given its own law keys and friction.
+  { L::pair_params(contact, species) } -> std::same_as<typename L::Params>;
+  { L::wall_params(params, wall, number) } -> std::same_as<typename L::Params>;
+  { L::problem(params, number) } -> std::same_as<std::optional<ParameterProblem>>;
+  // Closed forms (effective mass, or mass of the lightest sphere for the time step).
+  { L::binary_contact(params, number) } -> std::same_as<BinaryContact>;
+  { L::time_step(params, number, count) } -> std::same_as<double>;  // resolves a contact in >= count steps
+  { L::loading_stiffness(params) } -> std::same_as<double>;         // N/m, for overlap estimates
+  { L::tangential_stiffness(params) } -> std::same_as<double>;
+  { L::describe(params, number) } -> std::same_as<std::vector<CheckLine>>;
+  // The force on i (normal magnitude, tangential vector), advancing the pair's memory by dt.
+  { L::force(params, state, kin, number) } -> std::same_as<ContactForce>;
+};
+
+}  // namespace grainflow::dem
