@@ -19,7 +19,10 @@ debug: deps
 	cmake --preset debug
 	cmake --build --preset debug -j $(JOBS)
 
-demo: release
+# The demo builds the program only, not the tests and benchmarks.
+demo: deps
+	cmake --preset release
+	cmake --build --preset release -j $(JOBS) --target grainflow
 	$(GRAINFLOW) run cases/demo/vibrated_bed.toml -o runs/demo
 	$(GRAINFLOW) plot runs/demo
 	@echo "demo: figures in runs/demo/ (profiles.png, mass_below.png, timeseries.png, snapshots_phases.png)"

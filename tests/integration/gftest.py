@@ -30,9 +30,9 @@ def executable_from_argv(usage):
     return os.path.abspath(sys.argv[1])
 
 
-def run(exe, *args, cwd=None, timeout=120):
+def run(exe, *args, cwd=None):
     """Runs grainflow with `args`; returns (exit status, stdout, stderr)."""
-    result = subprocess.run([exe, *args], capture_output=True, text=True, timeout=timeout, cwd=cwd)
+    result = subprocess.run([exe, *args], capture_output=True, text=True, cwd=cwd)
     return result.returncode, result.stdout, result.stderr
 
 

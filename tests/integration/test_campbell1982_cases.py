@@ -51,7 +51,7 @@ def main():
             status, _, err = run(exe, "check", case)
             check(status == 0, f"check {case}: exit {status}: {err.strip()}")
             out = os.path.join(tmp, name)
-            status, _, err = run(exe, "run", case, "-o", out, "--quiet", *SHORT, timeout=300)
+            status, _, err = run(exe, "run", case, "-o", out, "--quiet", *SHORT)
             if not check(status == 0, f"run {case}: exit {status}: {err.strip()}"):
                 continue
             expected = ["summary.json", "timeseries.csv", "profiles.csv"]
@@ -62,7 +62,7 @@ def main():
             for number, command in enumerate(sweep_commands(case)):
                 folder = os.path.join(tmp, f"{name}_sweep{number}")
                 args = short_sweep_args(command)
-                status, _, err = run(exe, "sweep", *args, "-o", folder, "--quiet", *SHORT, timeout=600)
+                status, _, err = run(exe, "sweep", *args, "-o", folder, "--quiet", *SHORT)
                 check(status == 0 and os.path.exists(os.path.join(folder, "sweep.csv")),
                       f"{case}: sweep `{command}` exit {status}: {err.strip()[-400:]}")
                 run_dirs = glob.glob(os.path.join(folder, "*", ""))

@@ -93,19 +93,34 @@ def checkpoint_time(path):
         return float(f.attrs["time"])
 
 
+def checkpoint_reached(path, reached):
+    """Whether the checkpoint at `path` exists and holds a time >= `reached` (it is replaced by a
+    rename, so a reader sees a whole file or none)."""
+    try:
+        with h5py.File(path, "r") as f:
+            return float(f.attrs["time"]) >= reached
+    except (OSError, KeyError):
+        return False
+
+
+def wait_until(proc, condition):
+    """Polls `condition` while `proc` runs; True once it holds, False if the process ended first."""
+    while proc.poll() is None:
+        if condition():
+            return True
+        time.sleep(0.02)
+    return condition()
+
+
 def interrupted(exe, tmp, case, sets, sig, expected_status, label, wait_for):
     """Starts a long run, sends `sig` once `wait_for` exists in its folder, and checks the exit."""
     out = os.path.join(tmp, label)
     proc = subprocess.Popen([exe, "run", case, "-o", out, "--quiet", *sets], stderr=subprocess.PIPE, text=True)
-    if wait_for is None:  # an event-driven run writes nothing before its end: give it a second
-        time.sleep(1.0)
-    else:
-        deadline = time.time() + 60
-        while not os.path.exists(os.path.join(out, wait_for)) and time.time() < deadline and proc.poll() is None:
-            time.sleep(0.05)
-        time.sleep(0.3)
+    # The handlers are installed before the output folder is made; an event-driven run writes nothing
+    # else before its end. No deadline: ctest's TIMEOUT bounds a run that never gets there.
+    wait_until(proc, lambda: os.path.exists(os.path.join(out, wait_for or "")))
     proc.send_signal(sig)
-    _, err = proc.communicate(timeout=120)
+    _, err = proc.communicate()
     check(proc.returncode == expected_status, f"{label}: exit status {proc.returncode}, expected {expected_status}: {err}")
     check(os.path.exists(os.path.join(out, "checkpoint.h5")), f"{label}: no checkpoint after the signal")
     summary = json.load(open(os.path.join(out, "summary.json")))
@@ -164,19 +179,21 @@ def main():
         end = float(int(checkpoint_time(os.path.join(out, "checkpoint.h5"))) + 20)
         continue_and_compare(exe, tmp, CHUTE, CHUTE_SETS, out, end, "edmd_sigterm")
 
-        # SIGKILL at three moments of a run that checkpoints and snapshots often: what is left reads,
-        # and the last checkpoint continues to the same end as the unsplit run.
+        # SIGKILL at three moments of a run that checkpoints and snapshots often (once its checkpoint
+        # has reached 0.02, 0.05 and 0.1 s, whatever the machine's speed): what is left reads, and the
+        # last checkpoint continues to the same end as the unsplit run.
         kill_sets = BED_SETS + ["--set", "output.checkpoint_interval=0.01", "--set", "run.duration=5"]
-        for k, delay in enumerate((0.4, 0.9, 1.7)):
+        for k, reached in enumerate((0.02, 0.05, 0.1)):
             label = f"dem_sigkill_{k}"
             out = os.path.join(tmp, label)
+            checkpoint = os.path.join(out, "checkpoint.h5")
             proc = subprocess.Popen([exe, "run", BED, "-o", out, "--quiet", *kill_sets], stderr=subprocess.DEVNULL)
-            time.sleep(delay)
+            running = wait_until(proc, lambda: checkpoint_reached(checkpoint, reached))
             proc.kill()
             proc.wait()
+            check(running, f"{label}: the run ended before its checkpoint reached {reached} s")
             readable_after_kill(out, label)
-            checkpoint = os.path.join(out, "checkpoint.h5")
-            if not check(os.path.exists(checkpoint), f"{label}: no checkpoint after {delay} s"):
+            if not check(os.path.exists(checkpoint), f"{label}: no checkpoint after it reached {reached} s"):
                 continue
             end = round(checkpoint_time(checkpoint) + 0.03, 2)
             continue_and_compare(exe, tmp, BED, BED_SETS, out, end, label)

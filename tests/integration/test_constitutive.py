@@ -42,7 +42,7 @@ def gas_case(dim, side, phi, strips, duration):
 def check_gas(exe, root, name, dim, side, phi, strips, duration, reference):
     case = write_text(os.path.join(root, f"{name}.toml"), gas_case(dim, side, phi, strips, duration))
     out = os.path.join(root, name)
-    status, _, err = run(exe, "run", case, "-o", out, "--quiet", timeout=300)
+    status, _, err = run(exe, "run", case, "-o", out, "--quiet")
     if not check(status == 0, f"{name}: exited {status}: {err.strip()}"):
         return 0
     rows = read_csv(os.path.join(out, "constitutive.csv"))

@@ -303,7 +303,7 @@ def check_sparse_huge_box(exe, tmp):
     status, _, err = run(exe, "run", "cases/bench/hard_spheres.toml", "-o", out, "--quiet", "--set",
                          "species.0.count=1000", "--set", "domain.hi=[1.0e6,1.0e6,1.0e6]", "--set",
                          "particles.lattice_spacing=1.2", "--set", "particles.region_hi=[20.0,20.0,20.0]",
-                         "--set", "run.duration=1.0", timeout=120)
+                         "--set", "run.duration=1.0")
     if not check(status == 0, f"sparse huge box: exited {status}: {err.strip()}"):
         return
     with open(os.path.join(out, "summary.json")) as f:

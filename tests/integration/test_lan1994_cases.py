@@ -31,7 +31,7 @@ def main():
             status, _, err = run(exe, "check", case)
             check(status == 0, f"check {case}: exit {status}: {err.strip()}")
             out = os.path.join(tmp, name)
-            status, _, err = run(exe, "run", case, "-o", out, "--quiet", "--set", SHORT, timeout=300)
+            status, _, err = run(exe, "run", case, "-o", out, "--quiet", "--set", SHORT)
             if not check(status == 0, f"run {case}: exit {status}: {err.strip()}"):
                 continue
             expected = ["summary.json", "timeseries.csv", "profiles.csv"]
@@ -49,7 +49,7 @@ def main():
                     i = args.index("-o")
                     del args[i : i + 2]
                 folder = os.path.join(tmp, f"{name}_sweep{number}")
-                status, _, err = run(exe, "sweep", *args, "-o", folder, "--quiet", "--set", SHORT, timeout=600)
+                status, _, err = run(exe, "sweep", *args, "-o", folder, "--quiet", "--set", SHORT)
                 check(status == 0 and os.path.exists(os.path.join(folder, "sweep.csv")),
                       f"{case}: sweep `{command}` exit {status}: {err.strip()[-400:]}")
     return finish("test_lan1994_cases")

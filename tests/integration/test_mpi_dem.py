@@ -42,11 +42,11 @@ LONG = ["--set", "particles.expansion_time=0.02", "--set", "drive.start=0.05", "
         "--set", "run.duration=1.2", "--set", "output.average_start=0.3"]
 
 
-def run_ranks(exe, ranks, out, args, timeout=300, threads=1, case=BED):
+def run_ranks(exe, ranks, out, args, threads=1, case=BED):
     command = [exe, "run", case, "-o", out, "--quiet", "--threads", str(threads), *args]
     if ranks > 1:
         command = ["mpirun", "--oversubscribe", "-np", str(ranks), *command]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=mpi_environment())
+    result = subprocess.run(command, capture_output=True, text=True, env=mpi_environment())
     return result.returncode, result.stderr
 
 

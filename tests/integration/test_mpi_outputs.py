@@ -273,7 +273,7 @@ def main():
         process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=mpi_environment())
         time.sleep(3.0)
         process.send_signal(signal.SIGTERM)
-        _, err = process.communicate(timeout=120)
+        _, err = process.communicate()
         summary_path = os.path.join(stopped, "summary.json")
         if check(os.path.exists(summary_path), f"SIGTERM on 2 ranks: no summary.json: {err[-1000:]}"):
             summary = json.load(open(summary_path))

@@ -29,7 +29,7 @@ def main():
         check(status == 0, f"sweep without MPI: {status}: {err}")
         spread = os.path.join(tmp, "mpi")
         result = subprocess.run(["mpirun", "--oversubscribe", "-np", "2", exe, *args, "-o", spread], capture_output=True,
-                                text=True, timeout=300, env=mpi_environment())
+                                text=True, env=mpi_environment())
         check(result.returncode == 0, f"sweep on 2 ranks: {result.returncode}: {result.stderr}")
         # Each rank ran its share: both ranks reported runs.
         for rank in (0, 1):

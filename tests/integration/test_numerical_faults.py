@@ -105,7 +105,7 @@ def run_fault(exe, tmp, name, case, particles):
     write_text(os.path.join(folder, "case.toml"), case)
     if particles:
         write_text(os.path.join(folder, "particles.csv"), particles)
-    status, _, err = run(exe, "run", "case.toml", "-o", "out", "--quiet", cwd=folder, timeout=30)
+    status, _, err = run(exe, "run", "case.toml", "-o", "out", "--quiet", cwd=folder)
     check(status == 1, f"{name}: exit status {status}, expected 1; stderr: {err.strip()[:300]}")
     out = os.path.join(folder, "out")
     try:

@@ -106,7 +106,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="grainflow_outputs_") as tmp:
         case_path = write_text(os.path.join(tmp, "outputs.toml"), CASE)
         out = os.path.join(tmp, "out")
-        status, _, err = run(exe, "run", case_path, "-o", out, "--quiet", timeout=300)
+        status, _, err = run(exe, "run", case_path, "-o", out, "--quiet")
         if not check(status == 0, f"run exited {status}: {err.strip()}"):
             return 1
 

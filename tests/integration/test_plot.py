@@ -377,7 +377,7 @@ def build_edmd(folder):
 
 def plot(folder, exe=None):
     command = [exe, "plot", folder] if exe else ["/usr/bin/python3", SCRIPT, folder]
-    result = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    result = subprocess.run(command, capture_output=True, text=True)
     return result.returncode, result.stdout, result.stderr
 
 

@@ -62,7 +62,7 @@ def check_records(exe, label, case, out, overrides, threads):
     args = ["run", case, "-o", out, "--quiet", "--threads", str(threads)]
     for assignment in overrides:
         args += ["--set", assignment]
-    status, _, err = run(exe, *args, timeout=300)
+    status, _, err = run(exe, *args)
     if not check(status == 0, f"{label}: run exited {status}: {err.strip()}"):
         return
     resolved = os.path.join(out, "resolved_case.toml")
@@ -87,7 +87,7 @@ def check_records(exe, label, case, out, overrides, threads):
     # From another working folder: no path in the resolved case may depend on where it was run.
     again = out + "_again"
     status, _, err = run(exe, "run", os.path.abspath(resolved), "-o", again, "--quiet", "--threads", str(threads),
-                         cwd=os.path.dirname(os.path.dirname(out)), timeout=300)
+                         cwd=os.path.dirname(os.path.dirname(out)))
     if not check(status == 0, f"{label}: rerun of resolved_case.toml exited {status}: {err.strip()}"):
         return
     with open(os.path.join(out, "final_state.csv"), "rb") as a, open(os.path.join(again, "final_state.csv"), "rb") as b:

@@ -196,7 +196,7 @@ def main():
         return 2
     with tempfile.TemporaryDirectory(prefix="grainflow_vtu_") as tmp:
         dem = os.path.join(tmp, "dem")
-        status, _, err = run(exe, "run", write_text(os.path.join(tmp, "dem.toml"), DEM_CASE), "-o", dem, "--quiet", timeout=300)
+        status, _, err = run(exe, "run", write_text(os.path.join(tmp, "dem.toml"), DEM_CASE), "-o", dem, "--quiet")
         if check(status == 0, f"DEM run exited {status}: {err.strip()}"):
             # DEM snapshots fall on whole steps: within one step of the grid.
             with open(os.path.join(dem, "summary.json")) as f:
@@ -208,7 +208,7 @@ def main():
         text, _ = elastic_gas_case(EDMD_DIM, EDMD_SIDE, 0.2, EDMD_DURATION,
                                    f"interval = 0.05\nsnapshot_interval = {EDMD_SNAPSHOT_INTERVAL}\n\n[trajectory]\nsamples = 5\n")
         edmd = os.path.join(tmp, "edmd")
-        status, _, err = run(exe, "run", write_text(os.path.join(tmp, "edmd.toml"), text), "-o", edmd, "--quiet", timeout=300)
+        status, _, err = run(exe, "run", write_text(os.path.join(tmp, "edmd.toml"), text), "-o", edmd, "--quiet")
         if check(status == 0, f"edmd run exited {status}: {err.strip()}"):
             check_snapshots(edmd, EDMD_N, EDMD_SNAPSHOT_INTERVAL, EDMD_DURATION, 1e-9)
             check_trajectory(edmd, EDMD_DATASETS, EDMD_ATTRIBUTES)
