@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/dem/engine_factory.hpp"
 
 using namespace grainflow;

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "grainflow/core/error.hpp"
-#include "grainflow/io/particle_csv.hpp"
+#include "grainflow/config/particle_csv.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));

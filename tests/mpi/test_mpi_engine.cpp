@@ -14,9 +14,9 @@
 #include <unistd.h>
 #include <variant>
 
-#include "grainflow/app/dem_parallel_view.hpp"
-#include "grainflow/app/dem_run.hpp"
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/dem_parallel_view.hpp"
+#include "grainflow/run/dem_run.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/fault_checks.hpp"
 #include "grainflow/parallel/communicator.hpp"
@@ -83,7 +83,7 @@ TEST(MpiEngine, ANonFiniteStateOnOneRankStopsEveryRankAtTheSameStep) {
   const fs::path folder = shared_folder("engine");
   const CaseConfig c = resting_case(folder);
   dem::DemState initial = dem::build_dem_state(c);
-  const dem::EngineDomain domain{&comm(), app::dem_grid(initial, comm().size())};
+  const dem::EngineDomain domain{&comm(), run::dem_grid(initial, comm().size())};
   dem::DemEngineVariant engine = dem::make_engine(c, std::move(initial), 1, &domain);
   std::visit(
       [&](auto& e) {
@@ -126,11 +126,11 @@ TEST(MpiEngine, ARunWithANonFiniteStateOnOneRankWritesItsOutputsWithThatRanksMes
   // through the floor contact's tangential force: the position turns NaN inside the first steps.
   CaseConfig c = resting_case(folder);
   c.initial_particles[4].angular_velocity.z = std::numeric_limits<double>::quiet_NaN();  // refused by the loader
-  app::RunOptions options;
+  run::RunOptions options;
   options.output_directory = (folder / "out").string();
   options.quiet = true;
   options.echo_errors = false;
-  EXPECT_EQ(app::run_dem(c, options), 1) << "on rank " << comm().rank();
+  EXPECT_EQ(run::run_dem(c, options), 1) << "on rank " << comm().rank();
   comm().any(false);  // rank 0 has written everything
   if (comm().root()) {
     std::ifstream in(folder / "out" / "summary.json");

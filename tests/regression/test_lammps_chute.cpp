@@ -9,7 +9,7 @@
 
 #include <filesystem>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/observe/global_sample.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "grainflow/analysis/state_samples.hpp"
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "elastic_gas_case.hpp"
 

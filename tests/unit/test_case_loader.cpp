@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/derived_quantities.hpp"

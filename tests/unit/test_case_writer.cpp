@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "grainflow/core/case_loader.hpp"
-#include "grainflow/core/case_writer.hpp"
+#include "grainflow/run/case_loader.hpp"
+#include "grainflow/config/case_writer.hpp"
 
 using namespace grainflow;
 namespace fs = std::filesystem;

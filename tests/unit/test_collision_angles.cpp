@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <string>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "grainflow/observe/collision_angles.hpp"
 
@@ -24,9 +24,9 @@ constexpr double kRunScale = 1.0;
 constexpr double kRunScale = 0.1;
 #endif
 
-class AngleRecorder : public edmd::CollisionObserver {
+class AngleRecorder : public observe::CollisionObserver {
  public:
-  void on_pair(const edmd::PairCollision& c) override { angles.add(c.normal); }
+  void on_pair(const observe::PairCollision& c) override { angles.add(c.normal); }
   CollisionAngles angles;
 };
 

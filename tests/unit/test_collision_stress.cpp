@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "grainflow/observe/collision_stress.hpp"
 #include "grainflow/observe/wall_stress.hpp"
@@ -23,6 +23,9 @@
 
 using namespace grainflow;
 using namespace grainflow::edmd;
+using observe::CollisionObserver;
+using observe::PairCollision;
+using observe::WallCollision;
 using observe::StressProfile;
 using observe::StripGrid;
 using observe::StripStress;

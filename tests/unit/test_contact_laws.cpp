@@ -13,8 +13,8 @@
 #include <string>
 #include <variant>
 
-#include "grainflow/core/case_loader.hpp"
-#include "grainflow/core/case_writer.hpp"
+#include "grainflow/run/case_loader.hpp"
+#include "grainflow/config/case_writer.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/engine_factory.hpp"

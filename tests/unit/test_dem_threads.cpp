@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/dem/engine_factory.hpp"
 
 using namespace grainflow;

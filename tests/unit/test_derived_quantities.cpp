@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/dem/walton_braun.hpp"
 

@@ -14,7 +14,7 @@
 #include <cmath>
 #include <random>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/edmd/collision_rules.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "test_support.hpp"

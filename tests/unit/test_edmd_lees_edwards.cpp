@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
 
 using namespace grainflow;

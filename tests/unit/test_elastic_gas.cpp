@@ -12,7 +12,7 @@
 #include <utility>
 #include <variant>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/dem/engine_factory.hpp"
 #include "test_support.hpp"
 

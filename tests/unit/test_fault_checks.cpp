@@ -14,9 +14,9 @@
 #include <unistd.h>
 #include <variant>
 
-#include "grainflow/app/dem_run.hpp"
-#include "grainflow/app/edmd_run.hpp"
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/dem_run.hpp"
+#include "grainflow/run/edmd_run.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
@@ -139,11 +139,11 @@ TEST(FaultChecks, DemRunWithANonFiniteStateExitsWithStatusOneAndValidOutputs) {
   TempFolder folder("dem_run");
   CaseConfig c = dem_case(folder);
   c.initial_particles[2].velocity.x = std::numeric_limits<double>::infinity();  // refused by the loader
-  app::RunOptions options;
+  run::RunOptions options;
   options.output_directory = (folder.path / "out").string();
   options.quiet = true;
   options.echo_errors = false;
-  EXPECT_EQ(app::run_dem(c, options), 1);
+  EXPECT_EQ(run::run_dem(c, options), 1);
   const std::string summary = read_text(folder.path / "out" / "summary.json");
   EXPECT_NE(summary.find("\"errors\": [\"non-finite state: particle 2 at ("), std::string::npos) << summary;
   EXPECT_NE(summary.find("at t = 0 s (step 0)"), std::string::npos) << summary;
@@ -215,11 +215,11 @@ TEST(FaultChecks, EdmdRunWithANonFiniteStateExitsWithStatusOneAndValidOutputs) {
   for (std::size_t i = 0; i < s.particles.size(); ++i)
     c.initial_particles.push_back({"disc", s.particles.position[i], s.particles.velocity[i], {}, 0.0});
   c.initial_particles[3].velocity.x = std::numeric_limits<double>::quiet_NaN();
-  app::RunOptions options;
+  run::RunOptions options;
   options.output_directory = (folder.path / "out").string();
   options.quiet = true;
   options.echo_errors = false;
-  EXPECT_EQ(app::run_edmd(c, options), 1);
+  EXPECT_EQ(run::run_edmd(c, options), 1);
   const std::string summary = read_text(folder.path / "out" / "summary.json");
   EXPECT_NE(summary.find("\"errors\": [\"non-finite state: particle 3 at ("), std::string::npos) << summary;
   EXPECT_NE(summary.find("at t = 0 s; likely cause:"), std::string::npos) << summary;

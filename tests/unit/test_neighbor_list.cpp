@@ -16,7 +16,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
 #include "test_support.hpp"

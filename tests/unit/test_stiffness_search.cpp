@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "grainflow/app/stiffness_search.hpp"
+#include "grainflow/run/stiffness_search.hpp"
 
-using namespace grainflow::app;
+using namespace grainflow::run;
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "grainflow/observe/strip_grid.hpp"
+#include "grainflow/analysis/strip_grid.hpp"
 
 using namespace grainflow::observe;
 

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <string>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "grainflow/observe/strip_profile.hpp"
 

@@ -12,7 +12,7 @@
 
 #include <unistd.h>
 
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/dem_state.hpp"
 

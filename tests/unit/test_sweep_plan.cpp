@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "grainflow/app/sweep_plan.hpp"
+#include "grainflow/run/sweep_plan.hpp"
 #include "grainflow/core/error.hpp"
 
 using namespace grainflow;
-using namespace grainflow::app;
+using namespace grainflow::run;
 
 namespace {
 

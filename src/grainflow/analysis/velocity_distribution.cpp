@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "grainflow/observe/strip_grid.hpp"
+#include "grainflow/analysis/strip_grid.hpp"
 #include "grainflow/analysis/least_squares_line.hpp"
 
 namespace grainflow::analysis {

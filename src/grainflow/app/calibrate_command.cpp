@@ -8,9 +8,9 @@
 #include <iostream>
 #include <limits>
 
-#include "grainflow/app/dem_run.hpp"
-#include "grainflow/app/stiffness_search.hpp"
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/dem_run.hpp"
+#include "grainflow/run/stiffness_search.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
 #include "grainflow/dem/contact_law_registry.hpp"
@@ -20,6 +20,8 @@
 #include "grainflow/io/json_writer.hpp"
 
 namespace grainflow::app {
+
+using namespace grainflow::run;  // the run drivers and their tools
 namespace {
 
 namespace fs = std::filesystem;

@@ -3,7 +3,7 @@
 
 #include <ostream>
 
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 
 namespace grainflow::app {
 

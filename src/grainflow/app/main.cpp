@@ -11,16 +11,16 @@
 #include "grainflow/app/calibrate_command.hpp"
 #include "grainflow/app/check_command.hpp"
 #include "grainflow/app/constitutive_command.hpp"
-#include "grainflow/app/dem_run.hpp"
-#include "grainflow/app/edmd_run.hpp"
-#include "grainflow/app/interrupt.hpp"
-#include "grainflow/app/run_support.hpp"
+#include "grainflow/run/dem_run.hpp"
+#include "grainflow/run/edmd_run.hpp"
+#include "grainflow/run/interrupt.hpp"
+#include "grainflow/run/run_support.hpp"
 #include "grainflow/io/checkpoint_file.hpp"
 #include "grainflow/parallel/communicator.hpp"
-#include "grainflow/app/run_records.hpp"
+#include "grainflow/run/run_records.hpp"
 #include "grainflow/app/sweep_command.hpp"
 #include "grainflow/app/theory_command.hpp"
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
 
@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
                          "this checkpoint cannot continue case '" + case_path + "': it is from a " +
                              std::to_string(header.dimension) + "D '" + header.engine + "' run, the case is " +
                              std::to_string(as_given.engine.dimension) + "D '" + as_given.engine.kind + "'");
-      std::vector<std::string> all = app::split_overrides(header.case_overrides);
+      std::vector<std::string> all = run::split_overrides(header.case_overrides);
       all.insert(all.end(), overrides.begin(), overrides.end());
       overrides = all;
     }
@@ -206,18 +206,18 @@ int main(int argc, char** argv) {
       app::print_check(c, std::cout);
       return 0;
     }
-    app::RunOptions options;
+    run::RunOptions options;
     options.output_directory = output_dir.empty() ? (fs::path("runs") / fs::path(case_path).stem()).string() : output_dir;
     if (output_dir.empty() && !restart_path.empty()) {
       const fs::path folder = fs::path(restart_path).parent_path();
       options.output_directory = folder.empty() ? "." : folder.string();
     }
     options.restart = restart_path;
-    app::catch_interrupts();
+    run::catch_interrupts();
     options.threads = threads;
     options.quiet = quiet;
-    return app::run_with_records(c, options, std::vector<std::string>(argv, argv + argc), [&] {
-      return c.engine.kind == "edmd" ? app::run_edmd(c, options) : app::run_dem(c, options);
+    return run::run_with_records(c, options, std::vector<std::string>(argv, argv + argc), [&] {
+      return c.engine.kind == "edmd" ? run::run_edmd(c, options) : run::run_dem(c, options);
     });
   } catch (const InputError& e) {
     std::cerr << "grainflow: invalid input: " << e.what() << "\n";

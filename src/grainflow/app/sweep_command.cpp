@@ -18,8 +18,8 @@
 #include <set>
 #include <thread>
 
-#include "grainflow/app/sweep_plan.hpp"
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/sweep_plan.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/flat_json_reader.hpp"
@@ -29,6 +29,8 @@
 extern char** environ;
 
 namespace grainflow::app {
+
+using namespace grainflow::run;  // the run drivers and their tools
 
 namespace fs = std::filesystem;
 

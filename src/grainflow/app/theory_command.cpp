@@ -9,8 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "grainflow/app/run_support.hpp"
-#include "grainflow/core/case_loader.hpp"
+#include "grainflow/run/run_support.hpp"
+#include "grainflow/run/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/dem/contact_law_registry.hpp"
@@ -18,6 +18,8 @@
 #include "grainflow/io/flat_json_reader.hpp"
 
 namespace grainflow::app {
+
+using namespace grainflow::run;  // the run drivers and their tools
 
 namespace fs = std::filesystem;
 

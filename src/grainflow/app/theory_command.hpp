@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "grainflow/analysis/kinetic_theory.hpp"
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 
 namespace grainflow::app {
 

@@ -3,7 +3,7 @@
 // exactly (a periodic seam must not open a wider gap); validation and placement both use it.
 #pragma once
 
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 
 namespace grainflow::dem {
 

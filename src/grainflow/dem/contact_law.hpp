@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "grainflow/core/case_config.hpp"
-#include "grainflow/core/contact_parameters.hpp"
+#include "grainflow/config/case_config.hpp"
+#include "grainflow/config/contact_parameters.hpp"
 #include "grainflow/dem/contact_kinematics.hpp"
 
 namespace grainflow {

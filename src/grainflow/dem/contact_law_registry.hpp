@@ -8,7 +8,7 @@
 #include <string_view>
 #include <utility>
 
-#include "grainflow/core/contact_schema.hpp"
+#include "grainflow/config/contact_schema.hpp"
 #include "grainflow/dem/contact_law.hpp"
 #include "grainflow/dem/linear_dashpot.hpp"
 #include "grainflow/dem/walton_braun.hpp"

@@ -5,7 +5,7 @@
 #include <array>
 #include <vector>
 
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 #include "grainflow/core/periodic_box.hpp"
 #include "grainflow/dem/wall_motion.hpp"
 #include "grainflow/particles/particle_store.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 #include "grainflow/dem/contact_law.hpp"
 
 namespace grainflow::dem {

@@ -4,7 +4,7 @@
 
 #include <variant>
 
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 #include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/dem_engine.hpp"
 #include "grainflow/dem/derived_quantities.hpp"

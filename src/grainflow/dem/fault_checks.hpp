@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/derived_quantities.hpp"

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "grainflow/core/error.hpp"
-#include "grainflow/particles/species_sequence.hpp"
+#include "grainflow/config/species_sequence.hpp"
 #include "grainflow/dem/bump_lattice.hpp"
 #include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/derived_quantities.hpp"

@@ -4,7 +4,7 @@
 // so position and velocity of the floor are always consistent.
 #pragma once
 
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 
 namespace grainflow::dem {
 

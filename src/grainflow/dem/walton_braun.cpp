@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "grainflow/core/toml_reader.hpp"
+#include "grainflow/config/toml_reader.hpp"
 
 namespace grainflow::dem {
 

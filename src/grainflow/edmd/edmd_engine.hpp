@@ -24,7 +24,7 @@
 
 #include "grainflow/core/cell_counts.hpp"
 #include "grainflow/core/error.hpp"
-#include "grainflow/edmd/collision_observer.hpp"
+#include "grainflow/observe/collision_observer.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 #include "grainflow/edmd/fault_checks.hpp"
 #include "grainflow/edmd/event_queue.hpp"
@@ -112,7 +112,7 @@ class EdmdEngine {
   const ServoState& servo() const { return servo_state_; }
 
   // Reports every later collision to `observer` (nullptr: none). The engine does not own it.
-  void set_observer(CollisionObserver* observer) { observer_ = observer; }
+  void set_observer(observe::CollisionObserver* observer) { observer_ = observer; }
 
   // Calls visit(i, wall, force) for each particle rolling on a wall now (section 2.14.2), with the
   // force the wall exerts on it, m (a - g): the normal part of its weight and, on rough and no-slip
@@ -1031,7 +1031,7 @@ class EdmdEngine {
     const Vec3 dr = displacement(i, j);
     const Vec3 normal = dr * (1.0 / norm(dr));
     const Vec3 frame = image_velocity(i, j);
-    PairCollision c;
+    observe::PairCollision c;
     c.time = s_.time;
     c.i = i;
     c.j = j;
@@ -1074,7 +1074,7 @@ class EdmdEngine {
     Vec3 spin = p.angular_velocity[i];
     if (condition == WallCondition::rough) spin += (p.radius[i] * p.inv_inertia[i]) * cross(normal, impulse);
     const Vec3 relative = flight_[i].v - p.inv_mass[i] * impulse - wall.velocity;
-    WallCollision c;
+    observe::WallCollision c;
     c.time = s_.time;
     c.i = i;
     c.wall = w;
@@ -1194,7 +1194,7 @@ class EdmdEngine {
   std::vector<double> event_time_;
   EventQueue queue_;
   EventCounters counters_;
-  CollisionObserver* observer_ = nullptr;
+  observe::CollisionObserver* observer_ = nullptr;
 };
 
 }  // namespace grainflow::edmd

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 #include "grainflow/core/periodic_box.hpp"
 #include "grainflow/edmd/collision_rules.hpp"
 #include "grainflow/particles/particle_store.hpp"

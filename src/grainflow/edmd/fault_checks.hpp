@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "grainflow/core/case_config.hpp"
+#include "grainflow/config/case_config.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 

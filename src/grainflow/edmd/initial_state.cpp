@@ -6,7 +6,7 @@
 #include <random>
 
 #include "grainflow/core/error.hpp"
-#include "grainflow/particles/species_sequence.hpp"
+#include "grainflow/config/species_sequence.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 
 namespace grainflow::edmd {

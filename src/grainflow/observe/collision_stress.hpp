@@ -25,9 +25,9 @@
 #include <vector>
 
 #include "grainflow/core/vec3.hpp"
-#include "grainflow/edmd/collision_observer.hpp"
+#include "grainflow/observe/collision_observer.hpp"
 #include "grainflow/observe/block_sums.hpp"
-#include "grainflow/observe/strip_grid.hpp"
+#include "grainflow/analysis/strip_grid.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::observe {
@@ -57,9 +57,9 @@ class StressProfile {
   // Starts averaging at `time`: momentum per strip now (for Campbell's rho u_t correction).
   void begin(const StripGrid& grid, const ParticleStore& p, double time);
   // A particle pair collision; `grid` as it is at the collision's time.
-  void add(const StripGrid& grid, const edmd::PairCollision& c);
+  void add(const StripGrid& grid, const observe::PairCollision& c);
   // A wall collision: the impulse runs from the contact point to the centre.
-  void add(const StripGrid& grid, const edmd::WallCollision& c);
+  void add(const StripGrid& grid, const observe::WallCollision& c);
   // A force acting through the interval from `contact` to `centre` (a particle rolling on a wall).
   void add_contact_force(const StripGrid& grid, const Vec3& centre, const Vec3& contact, const Vec3& force,
                          double duration);

@@ -18,7 +18,7 @@
 
 #include "grainflow/core/vec3.hpp"
 #include "grainflow/observe/block_sums.hpp"
-#include "grainflow/observe/strip_grid.hpp"
+#include "grainflow/analysis/strip_grid.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::observe {

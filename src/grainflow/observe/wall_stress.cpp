@@ -14,15 +14,7 @@ WallLoads::Sums& WallLoads::Sums::operator+=(const Sums& o) {
   return *this;
 }
 
-WallLoads::WallLoads(const std::vector<edmd::EdmdWall>& walls)
-    : total_(walls.size()), interval_(walls.size()) {
-  for (const auto& w : walls) {
-    axis_.push_back(w.axis);
-    inward_.push_back(w.inward);
-  }
-}
-
-void WallLoads::add(const edmd::WallCollision& c, double area) {
+void WallLoads::add(const observe::WallCollision& c, double area) {
   Sums& s = interval_[c.wall];
   s.impulse += c.impulse * (1.0 / area);
   s.collisions += 1.0 / area;

@@ -13,8 +13,7 @@
 #include <vector>
 
 #include "grainflow/core/vec3.hpp"
-#include "grainflow/edmd/collision_observer.hpp"
-#include "grainflow/edmd/edmd_state.hpp"
+#include "grainflow/observe/collision_observer.hpp"
 #include "grainflow/observe/block_sums.hpp"
 
 namespace grainflow::observe {
@@ -34,10 +33,18 @@ struct WallLoad {
 
 class WallLoads {
  public:
-  explicit WallLoads(const std::vector<edmd::EdmdWall>& walls);
+  // Any plane walls with the wall's normal axis and `inward` sign (+1 on a lo face): the
+  // event-driven engine's and the soft-sphere engine's alike.
+  template <class Walls>
+  explicit WallLoads(const Walls& walls) : total_(walls.size()), interval_(walls.size()) {
+    for (const auto& w : walls) {
+      axis_.push_back(w.axis);
+      inward_.push_back(w.inward);
+    }
+  }
 
   // `area`: the wall's current area (2D: length), m^(D-1).
-  void add(const edmd::WallCollision& c, double area);
+  void add(const observe::WallCollision& c, double area);
   // A rolling particle's push, `force` on the particle, through `duration`.
   void add_rolling(int wall, const Vec3& force, double duration, double area);
   void close_interval(double duration);

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "grainflow/observe/block_sums.hpp"
-#include "grainflow/observe/partial_volume.hpp"
+#include "grainflow/analysis/partial_volume.hpp"
 #include "grainflow/observe/rank_reduce.hpp"
 #include "grainflow/particles/particle_store.hpp"
 

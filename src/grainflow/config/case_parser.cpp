@@ -1,0 +1,535 @@
+#include "grainflow/config/case_parser.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "grainflow/config/contact_schema.hpp"
+#include "grainflow/core/error.hpp"
+#include "grainflow/config/toml_reader.hpp"
+#include "grainflow/config/particle_csv.hpp"
+
+namespace grainflow {
+namespace {
+
+FaceKind parse_face_kind(TomlReader& reader, const std::string& key, const std::string& text) {
+  if (text == "periodic") return FaceKind::periodic;
+  if (text == "wall") return FaceKind::wall;
+  if (text == "bumpy") return FaceKind::bumpy;
+  if (text == "open") return FaceKind::open;
+  reader.fail(key, "unknown boundary '" + text + "' (valid: periodic, wall, bumpy, open)");
+}
+
+void read_boundaries(TomlReader& domain, DomainConfig& out) {
+  TomlReader boundary = domain.table("boundary");
+  static const char* axes[3] = {"x", "y", "z"};
+  for (int axis = 0; axis < 3; ++axis) {
+    const toml::node* node = boundary.raw(axes[axis]);
+    const std::string key = std::string("boundary.") + axes[axis];
+    FaceKind lo = FaceKind::periodic, hi = FaceKind::periodic;
+    if (!node) {
+      domain.fail(key, "is required (periodic, wall, bumpy or open)");
+    } else if (auto s = node->as_string()) {
+      lo = hi = parse_face_kind(domain, key, s->get());
+    } else if (auto a = node->as_array(); a && a->size() == 2 && a->get(0)->is_string() && a->get(1)->is_string()) {
+      lo = parse_face_kind(domain, key, a->get(0)->as_string()->get());
+      hi = parse_face_kind(domain, key, a->get(1)->as_string()->get());
+    } else {
+      domain.fail(key, "expected a string or [lo_face, hi_face]");
+    }
+    if ((lo == FaceKind::periodic) != (hi == FaceKind::periodic))
+      domain.fail(key, "periodic must apply to both faces of an axis");
+    out.faces[axis * 2] = lo;
+    out.faces[axis * 2 + 1] = hi;
+  }
+  boundary.reject_unknown_keys();
+}
+
+int face_index(TomlReader& reader, const std::string& key, const std::string& name) {
+  for (int f = 0; f < 6; ++f)
+    if (name == kFaceNames[f]) return f;
+  reader.fail(key, "unknown face '" + name + "' (valid: xlo, xhi, ylo, yhi, zlo, zhi)");
+}
+
+// The sampling window keys shared by [trajectory] and [zone_series]: start (< 0 when absent: the
+// caller's default) and samples, at least `fewest`.
+// The `particles` key's array of particle ids ([trajectory], [tracers]).
+std::vector<std::uint32_t> read_particle_ids(TomlReader& r, const toml::array& list) {
+  std::vector<std::uint32_t> ids;
+  for (const auto& item : list) {
+    const auto value = item.value<std::int64_t>();
+    if (!value || *value < 0 || *value > 0xFFFFFFFFll) r.fail("particles", "ids must be non-negative integers");
+    ids.push_back(static_cast<std::uint32_t>(*value));
+  }
+  return ids;
+}
+
+void read_sampling(TomlReader& r, double& start, long long& samples, long long fewest) {
+  start = r.number("start", -1.0);
+  if (r.has("start") && start < 0.0) r.fail("start", "must not be negative");
+  samples = r.integer("samples", samples);
+  if (samples < fewest) r.fail("samples", "needs at least " + std::to_string(fewest) + " samples");
+  if (samples > 100000000) r.fail("samples", "more than 10^8 samples is surely a mistake");
+}
+
+// A key of another registered contact law is named as such rather than as unknown.
+void reject_other_laws_keys(TomlReader& r, ContactSchemas schemas, const ContactSchema& law,
+                            std::span<const std::string_view> ContactSchema::*keys) {
+  for (const auto& other : schemas)
+    for (std::string_view key : other.*keys) {
+      const std::string name(key);
+      if (!r.has(name) || std::find(std::begin(law.*keys), std::end(law.*keys), key) != std::end(law.*keys)) continue;
+      r.fail(name, "belongs to contact.model = \"" + std::string(other.name) + "\"; \"" + std::string(law.name) +
+                       "\" does not take it");
+    }
+}
+
+CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden,
+                 ContactSchemas schemas) {
+  CaseConfig c;
+  c.path = file;
+  TomlReader top(file, &root, "", &overridden);
+
+  {
+    TomlReader r = top.table("engine");
+    c.engine.kind = r.string("kind", c.engine.kind);
+    c.engine.dimension = static_cast<int>(r.integer("dimension", c.engine.dimension));
+    if (c.engine.kind != "dem" && c.engine.kind != "edmd") r.fail("kind", "must be \"dem\" or \"edmd\"");
+    if (c.engine.dimension != 2 && c.engine.dimension != 3) r.fail("dimension", "must be 2 or 3");
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader r = top.table("domain");
+    if (!top.has("domain")) top.fail("domain", "is required");
+    c.domain.lo = r.required_vec3("lo");
+    c.domain.hi = r.required_vec3("hi");
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(c.domain.hi[axis] > c.domain.lo[axis])) r.fail("hi", "must exceed lo on every axis");
+    read_boundaries(r, c.domain);
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader r = top.table("gravity");
+    c.gravity = r.vec3("vector", c.gravity);
+    r.reject_unknown_keys();
+  }
+  {
+    auto entries = top.array_of_tables("species");
+    if (entries.empty()) top.fail("species", "at least one [[species]] table is required");
+    for (auto& r : entries) {
+      SpeciesConfig s;
+      s.name = r.string("name", "");
+      if (s.name.empty()) r.fail("name", "is required and must not be empty");
+      for (const auto& other : c.species)
+        if (other.name == s.name) r.fail("name", "species '" + s.name + "' is defined twice");
+      s.diameter = r.required_number("diameter");
+      if (!(s.diameter > 0.0)) r.fail("diameter", "must be positive");
+      s.density = r.required_number("density");
+      if (!(s.density > 0.0)) r.fail("density", "must be positive");
+      s.count = r.integer("count", 0);
+      if (s.count < 0) r.fail("count", "must not be negative");
+      s.frozen = r.boolean("frozen", false);
+      s.youngs_modulus = r.number("youngs_modulus", 0.0);
+      if (s.youngs_modulus < 0.0) r.fail("youngs_modulus", "must be positive");
+      s.poisson_ratio = r.number("poisson_ratio", -1.0);
+      if (r.has("poisson_ratio") && !(s.poisson_ratio >= 0.0 && s.poisson_ratio < 0.5))
+        r.fail("poisson_ratio", "must lie in [0, 0.5)");
+      if (s.youngs_modulus > 0.0 && s.poisson_ratio < 0.0) s.poisson_ratio = 0.3;
+      if (r.has("position")) {
+        s.position = r.required_vec3("position");
+        if (s.count != 1) r.fail("position", "places one particle: the species needs count = 1");
+      }
+      r.reject_unknown_keys();
+      c.species.push_back(s);
+    }
+  }
+  {
+    TomlReader r = top.table("particles");
+    auto& p = c.particles;
+    p.init = r.string("init", p.init);
+    if (p.init != "random" && p.init != "lattice" && p.init != "file")
+      r.fail("init", "must be \"random\", \"lattice\" or \"file\"");
+    p.file = r.string("file", "");
+    if (p.init == "file" && p.file.empty()) r.fail("file", "is required when init = \"file\"");
+    if (p.init != "file" && !p.file.empty()) r.fail("file", "is only used with init = \"file\"");
+    p.initial_temperature = r.number("initial_temperature", 0.0);
+    if (p.initial_temperature < 0.0) r.fail("initial_temperature", "must not be negative");
+    const std::int64_t seed = r.integer("seed", 1);
+    if (seed < 0) r.fail("seed", "must not be negative");
+    p.seed = static_cast<std::uint64_t>(seed);
+    if (r.has("region_lo")) p.region_lo = r.vec3("region_lo", {});
+    if (r.has("region_hi")) p.region_hi = r.vec3("region_hi", {});
+    p.expansion_time = r.number("expansion_time", p.expansion_time);
+    if (p.expansion_time < 0.0) r.fail("expansion_time", "must not be negative");
+    p.lattice = r.string("lattice", p.lattice);
+    if (p.lattice != "cubic" && p.lattice != "fcc") r.fail("lattice", "must be \"cubic\" or \"fcc\"");
+    if (p.lattice == "fcc" && (c.engine.kind != "edmd" || c.engine.dimension != 3))
+      r.fail("lattice", "fcc is available for the 3D event-driven engine");
+    p.lattice_jitter = r.number("lattice_jitter", 0.0);
+    if (!(p.lattice_jitter >= 0.0 && p.lattice_jitter < 1.0)) r.fail("lattice_jitter", "must lie in [0, 1)");
+    p.initial_velocity = r.vec3("initial_velocity", {});
+    p.initial_profile = r.string("initial_profile", p.initial_profile);
+    if (p.initial_profile != "uniform" && p.initial_profile != "couette" && p.initial_profile != "campbell_chute")
+      r.fail("initial_profile", "must be \"uniform\", \"couette\" or \"campbell_chute\"");
+    p.lattice_spacing = r.number("lattice_spacing", p.lattice_spacing);
+    if (!(p.lattice_spacing >= 1.0)) r.fail("lattice_spacing", "must be at least 1 (in diameters)");
+    r.reject_unknown_keys();
+  }
+  if (c.engine.kind == "dem") {
+    if (top.has("collision")) top.fail("collision", "is for engine.kind = \"edmd\"; the DEM engine takes [contact]");
+    TomlReader r = top.table("contact");
+    auto& k = c.contact;
+    k.model = r.string("model", std::string(schemas.front().name));
+    const ContactSchema* law = find_schema(schemas, k.model);
+    if (!law) r.fail("model", "unknown contact model '" + k.model + "' (valid: " + schema_names(schemas) + ")");
+    k.friction = r.number("friction", 0.0);
+    if (k.friction < 0.0) r.fail("friction", "must not be negative");
+    reject_other_laws_keys(r, schemas, *law, &ContactSchema::keys);
+    law->read(r, k.parameters);
+    r.reject_unknown_keys();
+  }
+  if (c.engine.kind == "edmd") {
+    if (top.has("contact")) top.fail("contact", "is for engine.kind = \"dem\"; the event-driven engine takes [collision]");
+    TomlReader r = top.table("collision");
+    auto& k = c.collision;
+    k.restitution = r.number("restitution", k.restitution);
+    if (!(k.restitution >= 0.0 && k.restitution <= 1.0)) r.fail("restitution", "must lie in [0, 1]");
+    k.restitution_law = r.string("restitution_law", k.restitution_law);
+    if (k.restitution_law != "constant" && k.restitution_law != "campbell")
+      r.fail("restitution_law", "must be \"constant\" or \"campbell\"");
+    k.velocity_scale = r.number("velocity_scale", 0.0);
+    if (k.velocity_scale < 0.0) r.fail("velocity_scale", "must not be negative");
+    // Campbell's listing rolls a particle whose wall rebound is below 1e-4 sqrt(g R); without a
+    // threshold a particle resting on a wall under gravity bounces ever faster until time stalls.
+    const double g = norm(c.gravity);
+    k.rolling_speed = r.number("rolling_speed", g > 0.0 ? 1e-4 * std::sqrt(g * 0.5 * c.species.front().diameter) : 0.0);
+    if (k.rolling_speed < 0.0) r.fail("rolling_speed", "must not be negative");
+    // Under gravity a particle pressed onto a rolling one would otherwise meet it ever more gently at
+    // one instant; the TC model (elastic within contact_duration) keeps them apart. 1e-4 sqrt(R/g).
+    k.contact_duration = r.number("contact_duration", g > 0.0 ? 1e-4 * std::sqrt(0.5 * c.species.front().diameter / g) : 0.0);
+    if (k.contact_duration < 0.0) r.fail("contact_duration", "must not be negative");
+    k.elastic_speed = r.number("elastic_speed", 0.0);
+    if (k.elastic_speed < 0.0) r.fail("elastic_speed", "must not be negative");
+    if (r.has("roughness") && r.has("tangential_restitution"))
+      r.fail("tangential_restitution", "give either roughness or tangential_restitution, not both");
+    const std::string roughness = r.string("roughness", "smooth");
+    if (roughness != "smooth" && roughness != "rough") r.fail("roughness", "must be \"smooth\" or \"rough\"");
+    k.tangential_restitution = r.number("tangential_restitution", roughness == "rough" ? 0.0 : -1.0);
+    if (!(k.tangential_restitution >= -1.0 && k.tangential_restitution <= 1.0))
+      r.fail("tangential_restitution", "must lie in [-1, 1]");
+    k.wall_restitution = r.number("wall_restitution", k.restitution);
+    if (!(k.wall_restitution >= 0.0 && k.wall_restitution <= 1.0)) r.fail("wall_restitution", "must lie in [0, 1]");
+    k.inertia_factor = r.number("inertia_factor", c.engine.dimension == 2 ? 0.5 : 0.4);
+    if (!(k.inertia_factor > 0.0 && k.inertia_factor <= 1.0)) r.fail("inertia_factor", "must lie in (0, 1]");
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader walls = top.table("walls");
+    for (int f = 0; f < 6; ++f) {
+      if (!walls.has(kFaceNames[f])) continue;
+      TomlReader r = walls.table(kFaceNames[f]);
+      WallConfig& w = c.walls[f];
+      const bool edmd = c.engine.kind == "edmd";
+      w.condition = r.string("condition", "smooth");
+      if (r.has("condition") && !edmd) r.fail("condition", "wall conditions are for the event-driven engine");
+      if (w.condition != "smooth" && w.condition != "rough" && w.condition != "no_slip")
+        r.fail("condition", "must be \"smooth\", \"rough\" or \"no_slip\"");
+      if (edmd) {
+        // A hard wall may be perfectly plastic (e = 0).
+        w.restitution = r.number("restitution", -1.0);
+        if (r.has("restitution") && !(w.restitution >= 0.0 && w.restitution <= 1.0))
+          r.fail("restitution", "must lie in [0, 1]");
+      } else {
+        const ContactSchema& law = *find_schema(schemas, c.contact.model);
+        reject_other_laws_keys(r, schemas, law, &ContactSchema::wall_keys);
+        law.read_wall(r, w.contact);
+      }
+      w.friction = r.number("friction", -1.0);
+      if (r.has("friction") && w.friction < 0.0) r.fail("friction", "must not be negative");
+      w.velocity = r.vec3("velocity", {});
+      w.bump_diameter = r.number("bump_diameter", 0.0);
+      if (r.has("bump_diameter") && !(w.bump_diameter > 0.0)) r.fail("bump_diameter", "must be positive");
+      w.lattice = r.string("lattice", w.lattice);
+      if (w.lattice != "square" && w.lattice != "triangular") r.fail("lattice", "must be \"square\" or \"triangular\"");
+      w.spacing = r.number("spacing", 0.0);
+      if (r.has("spacing") && !(w.spacing > 0.0)) r.fail("spacing", "must be positive");
+      const FaceKind kind = c.domain.faces[f];
+      if (kind == FaceKind::periodic || kind == FaceKind::open)
+        walls.fail(kFaceNames[f], "face is not a wall (boundary is periodic or open)");
+      if (kind != FaceKind::bumpy)
+        for (const char* key : {"bump_diameter", "lattice", "spacing"})
+          if (r.has(key)) r.fail(key, "only applies to a bumpy face");
+      r.reject_unknown_keys();
+    }
+    walls.reject_unknown_keys();
+  }
+  if (top.has("servo")) {
+    TomlReader r = top.table("servo");
+    auto& v = c.servo;
+    if (c.engine.kind != "edmd") top.fail("servo", "the pressure-controlled Couette cell is an event-driven (edmd) feature");
+    v.enabled = true;
+    v.normal_stress = r.required_number("normal_stress");
+    if (!(v.normal_stress > 0.0)) r.fail("normal_stress", "must be positive");
+    v.keep_shear_rate = r.boolean("keep_shear_rate", true);
+    v.scale_width = r.boolean("scale_width", true);
+    v.every_collisions = r.integer("every_collisions", 0);
+    if (v.every_collisions < 0) r.fail("every_collisions", "must not be negative");
+    v.gap_change = r.number("gap_change", 0.0);
+    if (v.gap_change < 0.0) r.fail("gap_change", "must not be negative");
+    if (c.domain.faces[2] != FaceKind::wall || c.domain.faces[3] != FaceKind::wall)
+      r.fail("normal_stress", "the servo moves the walls at ylo and yhi: both must be \"wall\"");
+    if (!c.domain.periodic(0)) r.fail("scale_width", "the Couette cell needs a periodic x axis (the flow direction)");
+    r.reject_unknown_keys();
+  }
+  if (top.has("lees_edwards")) {
+    TomlReader r = top.table("lees_edwards");
+    if (c.engine.kind != "edmd") top.fail("lees_edwards", "Lees–Edwards boundaries are an event-driven (edmd) feature");
+    c.lees_edwards_rate = r.required_number("shear_rate");
+    if (c.lees_edwards_rate == 0.0) r.fail("shear_rate", "must not be zero (drop [lees_edwards] for a plain periodic box)");
+    if (!c.domain.periodic(0) || !c.domain.periodic(1))
+      r.fail("shear_rate", "Lees–Edwards boundaries need periodic x (flow) and y (gradient) axes");
+    r.reject_unknown_keys();
+  }
+  if (top.has("drive") && c.engine.kind == "edmd")
+    top.fail("drive", "vibrating drives are for the DEM engine; event-driven walls move at constant velocity");
+  if (top.has("drive")) {
+    TomlReader r = top.table("drive");
+    auto& d = c.drive;
+    d.enabled = true;
+    d.preset = r.string("preset", "");
+    if (!d.preset.empty() && d.preset != "rotary") r.fail("preset", "unknown preset (valid: rotary)");
+    d.face = face_index(r, "face", r.string("face", "ylo"));
+    d.amplitude = r.vec3("amplitude", {});
+    d.frequency = r.vec3("frequency", {});
+    d.phase = r.vec3("phase", {});
+    if (d.preset == "rotary") {
+      // eq. (4-1-1): one amplitude and frequency on all three axes, phases 0, 2pi/3, 4pi/3.
+      if (r.has("phase")) r.fail("phase", "is fixed by preset = \"rotary\"");
+      const double a = r.has("amplitude") ? d.amplitude.x : 0.0;
+      const double f = r.has("frequency") ? d.frequency.x : 0.0;
+      if (!(d.amplitude.x == d.amplitude.y && d.amplitude.y == d.amplitude.z))
+        r.fail("amplitude", "the rotary preset needs equal amplitudes on all axes");
+      if (!(d.frequency.x == d.frequency.y && d.frequency.y == d.frequency.z))
+        r.fail("frequency", "the rotary preset needs equal frequencies on all axes");
+      d.amplitude = {a, a, a};
+      d.frequency = {f, f, f};
+      d.phase = {0.0, 2.0 * M_PI / 3.0, 4.0 * M_PI / 3.0};
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      if (d.amplitude[axis] < 0.0) r.fail("amplitude", "must not be negative");
+      if (d.frequency[axis] < 0.0) r.fail("frequency", "must not be negative");
+      if (d.amplitude[axis] > 0.0 && d.frequency[axis] == 0.0)
+        r.fail("frequency", "an axis with an amplitude needs a positive frequency");
+    }
+    d.start = r.number("start", 0.0);
+    if (d.start < 0.0) r.fail("start", "must not be negative");
+    d.ramp = r.number("ramp", 1.0);
+    if (d.ramp < 0.0) r.fail("ramp", "must not be negative");
+    const FaceKind kind = c.domain.faces[d.face];
+    if (kind == FaceKind::periodic) r.fail("face", std::string("cannot drive a periodic face (") + kFaceNames[d.face] + ")");
+    if (kind == FaceKind::open) r.fail("face", std::string("cannot drive an open face (") + kFaceNames[d.face] + ")");
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader r = top.table("run");
+    auto& run = c.run;
+    run.collisions = r.integer("collisions", 0);
+    if (run.collisions < 0) r.fail("collisions", "must not be negative");
+    if (run.collisions > 0 && c.engine.kind != "edmd") r.fail("collisions", "only the event-driven engine counts collisions");
+    run.duration = run.collisions > 0 ? r.number("duration", 1e300) : r.required_number("duration");
+    if (!(run.duration > 0.0)) r.fail("duration", "must be positive");
+    if (c.engine.kind == "edmd")
+      for (const char* key : {"time_step", "collision_steps", "skin", "halt_overlap", "sort_every"})
+        if (r.has(key)) r.fail(key, "is a soft-sphere (dem) setting; the event-driven engine has no time step");
+    run.time_step = r.number("time_step", 0.0);
+    if (run.time_step < 0.0) r.fail("time_step", "must not be negative (0 = from eq. 2-5-4)");
+    run.collision_steps = static_cast<int>(r.integer("collision_steps", run.collision_steps));
+    if (run.collision_steps < 1) r.fail("collision_steps", "must be at least 1");
+    run.skin = r.number("skin", -1.0);
+    if (r.has("skin") && !(run.skin > 0.0)) r.fail("skin", "must be positive");
+    run.halt_overlap = r.number("halt_overlap", 0.0);
+    if (run.halt_overlap < 0.0) r.fail("halt_overlap", "must not be negative");
+    run.sort_every = static_cast<int>(r.integer("sort_every", run.sort_every));
+    if (run.sort_every < 0) r.fail("sort_every", "must not be negative");
+    r.reject_unknown_keys();
+  }
+  {
+    TomlReader r = top.table("output");
+    auto& o = c.output;
+    o.interval = r.number("interval", o.interval);
+    if (!(o.interval > 0.0)) r.fail("interval", "must be positive");
+    o.snapshot_interval = r.number("snapshot_interval", 0.0);
+    if (o.snapshot_interval < 0.0) r.fail("snapshot_interval", "must not be negative");
+    o.checkpoint_interval = r.number("checkpoint_interval", 0.0);
+    if (o.checkpoint_interval < 0.0) r.fail("checkpoint_interval", "must not be negative");
+    o.profile_interval = r.number("profile_interval", 0.0);
+    if (o.profile_interval < 0.0) r.fail("profile_interval", "must not be negative");
+    o.average_start = r.number("average_start", 0.0);
+    if (o.average_start < 0.0) r.fail("average_start", "must not be negative");
+    o.average_start_collisions = r.integer("average_start_collisions", 0);
+    if (o.average_start_collisions < 0) r.fail("average_start_collisions", "must not be negative");
+    if (o.average_start_collisions > 0 && c.engine.kind != "edmd")
+      r.fail("average_start_collisions", "only the event-driven engine counts collisions (use average_start)");
+    o.collision_stresses = r.boolean("collision_stresses", true);
+    if (r.has("collision_stresses") && c.engine.kind != "edmd")
+      r.fail("collision_stresses", "only the event-driven engine measures stresses from its collisions");
+    o.zone_thickness = r.number("zone_thickness", 0.0);
+    if (o.zone_thickness < 0.0) r.fail("zone_thickness", "must not be negative");
+    o.bed_gap_fraction = r.number("bed_gap_fraction", o.bed_gap_fraction);
+    if (!(o.bed_gap_fraction > 0.0 && o.bed_gap_fraction < 0.74)) r.fail("bed_gap_fraction", "must lie in (0, 0.74)");
+    o.bed_surface_fraction = r.number("bed_surface_fraction", o.bed_surface_fraction);
+    if (!(o.bed_surface_fraction > 0.0 && o.bed_surface_fraction < 0.74))
+      r.fail("bed_surface_fraction", "must lie in (0, 0.74)");
+    r.reject_unknown_keys();
+  }
+  if (top.has("trajectory")) {
+    TomlReader r = top.table("trajectory");
+    auto& t = c.trajectory;
+    t.enabled = true;
+    read_sampling(r, t.start, t.samples, 2);
+    if (c.engine.kind == "dem") {  // windowed averages for correlations (Lan)
+      if (r.has("interval")) r.fail("interval", "is for event-driven runs; a DEM trajectory's samples are `window` apart");
+      t.window = r.number("window", 0.0);
+      if (t.window < 0.0) r.fail("window", "must not be negative (0 = half a collision time, Lan's t_s)");
+      t.max_lag = r.integer("max_lag", 0);
+      if (t.max_lag < 0 || t.max_lag >= t.samples) r.fail("max_lag", "must lie in [0, samples) (0 = samples / 2)");
+    } else {  // instantaneous states for distributions (Campbell)
+      for (const char* key : {"window", "max_lag"})
+        if (r.has(key)) r.fail(key, "is for DEM runs; an event-driven trajectory holds instantaneous states `interval` apart");
+      t.interval = r.number("interval", 0.0);
+      if (t.interval < 0.0) r.fail("interval", "must not be negative (0 = the rest of the run spread over the samples)");
+    }
+    if (const toml::node* ids = r.raw("particles")) {
+      if (const auto* word = ids->as_string()) {
+        if (word->get() != "all") r.fail("particles", "must be \"all\" or an array of particle ids");
+      } else if (const auto* list = ids->as_array()) {
+        t.particles = read_particle_ids(r, *list);
+        if (t.particles.empty()) r.fail("particles", "an empty list follows nobody (use \"all\")");
+      } else {
+        r.fail("particles", "must be \"all\" or an array of particle ids");
+      }
+    }
+    r.reject_unknown_keys();
+  }
+  if (top.has("zone_series")) {
+    TomlReader r = top.table("zone_series");
+    auto& z = c.zone_series;
+    if (c.engine.kind != "dem") top.fail("zone_series", "zone velocity histories are implemented for the DEM engine only");
+    z.enabled = true;
+    read_sampling(r, z.start, z.samples, 16);
+    z.interval = r.number("interval", 0.0);
+    if (z.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
+    r.reject_unknown_keys();
+  }
+  if (top.has("field")) {
+    TomlReader r = top.table("field");
+    auto& f = c.field;
+    if (c.engine.kind != "dem") top.fail("field", "velocity fields are implemented for the DEM engine only");
+    f.enabled = true;
+    const std::string axis = r.string("axis", "z");
+    if (axis != "x" && axis != "y" && axis != "z") r.fail("axis", "must be \"x\", \"y\" or \"z\"");
+    f.axis = axis[0] - 'x';
+    f.cell = r.number("cell", 0.0);
+    if (f.cell < 0.0) r.fail("cell", "must not be negative (0 = one diameter)");
+    f.start = r.number("start", -1.0);
+    if (r.has("start") && f.start < 0.0) r.fail("start", "must not be negative");
+    f.interval = r.number("interval", 0.0);
+    if (f.interval < 0.0) r.fail("interval", "must not be negative (0 = every time step)");
+    const long long bins = r.integer("phase_bins", f.phase_bins);
+    if (bins < 0 || bins > 360) r.fail("phase_bins", "must lie in [0, 360] (0 = no phase-binned fields)");
+    f.phase_bins = static_cast<int>(bins);
+    r.reject_unknown_keys();
+  }
+  if (top.has("tracers")) {
+    TomlReader r = top.table("tracers");
+    auto& t = c.tracers;
+    if (c.engine.kind != "dem") top.fail("tracers", "tracer histories are implemented for the DEM engine only");
+    t.enabled = true;
+    if (const toml::node* ids = r.raw("particles")) {
+      const auto* list = ids->as_array();
+      if (!list) r.fail("particles", "must be an array of particle ids");
+      t.particles = read_particle_ids(r, *list);
+    }
+    if (const toml::node* names = r.raw("species")) {
+      const auto* list = names->as_array();
+      if (!list) r.fail("species", "must be an array of species names");
+      for (const auto& item : *list) {
+        const auto name = item.value<std::string>();
+        if (!name) r.fail("species", "must be an array of species names");
+        const bool known = std::any_of(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == *name; });
+        if (!known) r.fail("species", "no species is named '" + *name + "'");
+        t.species.push_back(*name);
+      }
+    }
+    if (t.particles.empty() && t.species.empty()) r.fail("particles", "name particle ids or species to follow");
+    t.start = r.number("start", 0.0);
+    if (t.start < 0.0) r.fail("start", "must not be negative");
+    t.interval = r.number("interval", 0.0);
+    if (t.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
+    r.reject_unknown_keys();
+  }
+  top.reject_unknown_keys();
+  return c;
+}
+
+void read_initial_particles(CaseConfig& c, const std::filesystem::path& base_dir) {
+  std::filesystem::path file(c.particles.file);
+  if (file.is_relative()) file = base_dir / file;
+  c.particles.file = file.string();
+  if (!std::filesystem::exists(file))
+    throw InputError(c.path, "particles.file", "file '" + file.string() + "' does not exist");
+  c.initial_particles = io::read_particle_csv(file.string());
+  for (auto& species : c.species) {
+    if (species.count != 0)
+      throw InputError(c.path, "species.count", "species '" + species.name + "': counts come from particles.file with init = \"file\"");
+  }
+  // Bumps of bumpy faces are rebuilt from the case; a final_state.csv that lists them may be reused.
+  std::erase_if(c.initial_particles, [&](const InitialParticle& p) {
+    for (int f = 0; f < 6; ++f)
+      if (c.domain.faces[f] == FaceKind::bumpy && p.species == std::string("bump_") + kFaceNames[f]) return true;
+    return false;
+  });
+  for (const auto& p : c.initial_particles) {
+    auto it = std::find_if(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == p.species; });
+    if (it == c.species.end())
+      throw InputError(c.particles.file, "species", "particle of unknown species '" + p.species + "'");
+    ++it->count;
+  }
+}
+
+toml::table parse_toml(const std::string& text, const std::string& label) {
+  try {
+    return toml::parse(text, label);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << "line " << e.source().begin.line << ", column " << e.source().begin.column;
+    throw InputError(label, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
+  }
+}
+
+
+}  // namespace
+
+std::string read_case_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "", "cannot open the case file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+CaseConfig parse_case(const std::string& text, const std::string& label, const std::vector<std::string>& overrides,
+                      ContactSchemas schemas) {
+  toml::table root = parse_toml(text, label);
+  std::set<std::string> overridden;
+  for (const auto& assignment : overrides) overridden.insert(apply_override(root, assignment, label));
+  CaseConfig c = parse(root, label, overridden, schemas);
+  c.overrides = overrides;
+  if (c.particles.init == "file") read_initial_particles(c, std::filesystem::path(label).parent_path());
+  return c;
+}
+
+}  // namespace grainflow

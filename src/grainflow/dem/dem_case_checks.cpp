@@ -1,0 +1,171 @@
+// The checks of a soft-sphere case that combine several keys: dimension, the law's parameters,
+// steps per contact, periodic lengths against the cell grid, bumpy lattices, what fits where,
+// output intervals. Throws InputError naming the key.
+#include "grainflow/dem/dem_case_checks.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "grainflow/config/case_checks.hpp"
+#include "grainflow/dem/bump_lattice.hpp"
+#include "grainflow/dem/derived_quantities.hpp"
+#include "grainflow/dem/neighbor_list.hpp"
+
+namespace grainflow::dem {
+namespace {
+
+using case_checks::fail;
+using case_checks::fmt_number;
+
+// Minimum steps per binary contact: below ~5 velocity Verlet misses the spring's turning point
+// badly (it goes unstable at dt = 2/omega, i.e. ~1.6 steps per contact).
+constexpr double kMinStepsPerContact = 5.0;
+// Random placement with radius expansion cannot reach dense packings; 0.5 leaves room to expand.
+constexpr double kMaxRandomSolidsFraction = 0.5;
+
+}  // namespace
+
+void validate_dem_case(const CaseConfig& c) {
+  if (c.engine.dimension != 3)
+    fail(c, "engine.dimension", "the DEM engine simulates spheres in 3D; dimension = 2 is not available yet");
+  const dem::DerivedQuantities d = dem::derive(c);
+
+  if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");
+  if (d.law_problem) fail(c, "contact." + d.law_problem->key, d.law_problem->reason);
+  if (d.steps_per_contact < kMinStepsPerContact) {
+    const double suggested = d.contact_duration / kMinStepsPerContact;
+    fail(c, d.time_step_from_case ? "run.time_step" : "run.collision_steps",
+         "time step " + std::to_string(d.time_step) + " s resolves a contact of " +
+             std::to_string(d.contact_duration) + " s in only " + std::to_string(d.steps_per_contact) +
+             " steps; use a time step <= " + std::to_string(suggested) + " s (at least 5 steps per contact)");
+  }
+  // The cell grid needs two cells across every periodic axis.
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!c.domain.periodic(axis)) continue;
+    const double needed = 2.0 * (d.max_diameter + d.skin);
+    if (c.domain.length(axis) < needed)
+      fail(c, "domain.hi", std::string("periodic axis ") + "xyz"[axis] + " is " + std::to_string(c.domain.length(axis)) +
+                               " m long; it must be at least 2 (largest diameter + skin) = " + std::to_string(needed) + " m");
+  }
+  for (int f = 0; f < 6; ++f) {
+    if (c.domain.faces[f] != FaceKind::bumpy) continue;
+    const dem::BumpLattice lattice = dem::bump_lattice(c, f);
+    const std::string key = std::string("walls.") + kFaceNames[f] + ".spacing";
+    if (lattice.closest_bumps() < lattice.bump_diameter * (1.0 - 1e-9))
+      fail(c, key, "bumps would overlap: the lattice (stretched to tile the face: " + std::to_string(lattice.columns) +
+                       " x " + std::to_string(lattice.rows) + ") puts bump centres " +
+                       std::to_string(lattice.closest_bumps()) + " m apart, less than bump_diameter");
+    double smallest = 0.0;
+    for (const auto& s : c.species)
+      if (!s.frozen && (smallest == 0.0 || s.diameter < smallest)) smallest = s.diameter;
+    if (lattice.largest_passing_diameter() >= smallest)
+      fail(c, key, "the " + std::string(lattice.triangular ? "triangular" : "square") + " lattice (" +
+                       std::to_string(lattice.columns) + " x " + std::to_string(lattice.rows) + " bumps) lets spheres up to " +
+                       std::to_string(lattice.largest_passing_diameter()) + " m through; the smallest species is " +
+                       std::to_string(smallest) + " m (reduce spacing or enlarge bump_diameter)");
+  }
+  // Particles must fit where they are placed.
+  if (c.particles.init != "file") {
+    Vec3 lo = c.particles.region_lo.value_or(c.domain.lo);
+    Vec3 hi = c.particles.region_hi.value_or(c.domain.hi);
+    for (int axis = 0; axis < 3; ++axis) {
+      if (lo[axis] < c.domain.lo[axis] || hi[axis] > c.domain.hi[axis])
+        fail(c, "particles.region_lo", "the placement region must lie inside the domain");
+      if (!(hi[axis] - lo[axis] > d.max_diameter))
+        fail(c, "particles.region_hi", "the placement region must be wider than the largest diameter on every axis");
+    }
+    double volume = 1.0;
+    for (int axis = 0; axis < 3; ++axis) volume *= hi[axis] - lo[axis];
+    double solids = 0.0;
+    for (const auto& s : c.species) solids += s.count * M_PI / 6.0 * s.diameter * s.diameter * s.diameter;
+    if (c.particles.init == "random" && solids / volume > kMaxRandomSolidsFraction)
+      fail(c, "species.count", "the particles fill " + std::to_string(solids / volume) +
+                                   " of the placement region; random placement needs at most " +
+                                   std::to_string(kMaxRandomSolidsFraction) + " (enlarge the domain or region)");
+    if (c.particles.init == "lattice") {
+      const double spacing = c.particles.lattice_spacing * d.max_diameter;
+      double sites = 1;  // counted in double: a huge region must not overflow an integer
+      for (int axis = 0; axis < 3; ++axis) sites *= std::floor((hi[axis] - lo[axis]) / spacing);
+      long total = 0;
+      for (const auto& s : c.species) total += s.count;
+      if (static_cast<double>(total) > sites)
+        fail(c, "species.count", std::to_string(total) + " particles do not fit on the " + fmt_number(sites) +
+                                     " lattice sites of the placement region");
+    }
+  } else {
+    for (std::size_t i = 0; i < c.initial_particles.size(); ++i) {
+      const auto& p = c.initial_particles[i];
+      for (int axis = 0; axis < 3; ++axis) {
+        const bool closed_lo = c.domain.faces[axis * 2] != FaceKind::open && !c.domain.periodic(axis);
+        const bool closed_hi = c.domain.faces[axis * 2 + 1] != FaceKind::open && !c.domain.periodic(axis);
+        if ((closed_lo && p.position[axis] < c.domain.lo[axis]) || (closed_hi && p.position[axis] > c.domain.hi[axis]))
+          throw InputError(c.particles.file, "particle " + std::to_string(i + 1),
+                           std::string("lies outside the domain on axis ") + "xyz"[axis]);
+      }
+    }
+  }
+  if (c.drive.enabled && c.domain.faces[c.drive.face] == FaceKind::periodic)
+    fail(c, "drive.face", "cannot drive a periodic face");
+  if (c.output.snapshot_interval > 0.0 && c.output.snapshot_interval < d.time_step)
+    fail(c, "output.snapshot_interval", "must be at least one time step");
+  if (c.output.interval < d.time_step) fail(c, "output.interval", "must be at least one time step");
+  // A particle may then occupy at most three zones (Lan 1994 section 3.1).
+  if (c.output.zone_thickness > 0.0 && c.output.zone_thickness < 0.5 * d.max_diameter)
+    fail(c, "output.zone_thickness", "must be at least the radius of the largest particle");
+  // Refuse sizes that would exhaust memory rather than start and fail hours later.
+  constexpr long kMaxParticles = 200'000'000;
+  if (d.moving_particles + d.frozen_particles > kMaxParticles)
+    fail(c, "species.count", "more than 2e8 particles cannot run on one machine");
+  const double steps = c.run.duration / d.time_step;
+  if (steps > 1e13) fail(c, "run.duration", "needs more than 1e13 time steps");
+  if (c.zone_series.enabled) {
+    const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
+    if (c.zone_series.interval == 0.0 && !(f > 0.0))
+      fail(c, "zone_series.interval", "needs a value: there is no drive along gravity to take 20 samples per period of");
+    const double interval = c.zone_series.interval > 0.0 ? c.zone_series.interval : 1.0 / (20.0 * f);
+    if (interval < d.time_step) fail(c, "zone_series.interval", "is shorter than one time step");
+  }
+  for (const auto& s : c.species)
+    if (s.position) {
+      if (c.particles.init != "random")
+        fail(c, "species.position", "species '" + s.name + "': a fixed start position needs particles.init = \"random\"");
+      for (int axis = 0; axis < 3; ++axis)
+        if ((*s.position)[axis] < c.domain.lo[axis] || (*s.position)[axis] > c.domain.hi[axis])
+          fail(c, "species.position", "species '" + s.name + "' starts outside the domain on axis " + "xyz"[axis]);
+    }
+  if (c.field.enabled) {
+    if (c.field.axis == d.gravity_axis)
+      fail(c, "field.axis", "must be a horizontal axis; it is the gravity axis");
+    if (c.field.cell > 0.0 && c.field.cell < 0.1 * d.reference_diameter)
+      fail(c, "field.cell", "is under a tenth of a diameter: most cells would stay empty");
+    const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
+    if (c.field.phase_bins > 0 && !(f > 0.0))
+      fail(c, "field.phase_bins", "needs a drive along gravity (set phase_bins = 0 for the long-term field only)");
+    if (c.field.interval > 0.0 && c.field.interval < d.time_step) fail(c, "field.interval", "is shorter than one time step");
+  }
+  if (c.tracers.enabled) {
+    const long total = d.moving_particles + d.frozen_particles;
+    for (auto id : c.tracers.particles)
+      if (id >= static_cast<std::uint64_t>(total))
+        fail(c, "tracers.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
+                                         std::to_string(total - 1) + ")");
+    if (c.tracers.interval > 0.0 && c.tracers.interval < d.time_step) fail(c, "tracers.interval", "is shorter than one time step");
+  }
+  if (c.trajectory.enabled) {
+    const auto& t = c.trajectory;
+    if (t.window > 0.0 && t.window < d.time_step) fail(c, "trajectory.window", "is shorter than one time step");
+    const long total = d.moving_particles + d.frozen_particles;
+    for (auto id : t.particles)
+      if (id >= static_cast<std::uint64_t>(total))
+        fail(c, "trajectory.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
+                                            std::to_string(total - 1) + ")");
+    const double followed = t.particles.empty() ? static_cast<double>(d.moving_particles) : t.particles.size();
+    const double bytes = 48.0 * followed * static_cast<double>(t.samples);  // velocity + position, 6 doubles
+    if (bytes > 64e9)
+      fail(c, "trajectory.samples", "trajectory.h5 would hold " + std::to_string(bytes / 1e9) +
+                                        " GB; follow fewer particles or take fewer samples");
+  }
+}
+
+}  // namespace grainflow::dem

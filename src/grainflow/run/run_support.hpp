@@ -1,0 +1,78 @@
+// Pieces every engine's run driver shares: output schedules on an exact time grid, the progress
+// line, and final_state.csv.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "grainflow/config/case_config.hpp"
+#include "grainflow/io/json_writer.hpp"
+#include "grainflow/particles/particle_store.hpp"
+
+namespace grainflow::run {
+
+// The steps at which something recurring every `interval` seconds happens: the step nearest to each
+// k * interval (k = 1, 2, ...), so output times stay on the requested grid and the last one (at the
+// end of a run whose duration is a multiple of the interval) is not lost. A fixed step count,
+// round(interval / dt), drifts by up to dt/2 per interval and can skip the final output.
+class Schedule {
+ public:
+  Schedule(double interval, double dt) : interval_(interval), dt_(dt) { advance(); }
+  // True once per interval, at the first step at or after the next scheduled one.
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(k_, next_);
+  }
+  bool due(long step) {
+    if (interval_ <= 0.0 || step < next_) return false;
+    advance();
+    return true;
+  }
+
+ private:
+  void advance() {
+    ++k_;
+    next_ = std::max(next_ + 1, static_cast<long>(std::llround(k_ * interval_ / dt_)));
+  }
+  double interval_, dt_;
+  long k_ = 0, next_ = 0;
+};
+
+// The k-th time of a grid `interval` apart, k * interval, pulled back onto `end` when rounding puts it
+// just past the end (3 * 0.1 > 0.3): an output due at the end of a run is taken, not lost.
+inline double grid_time(long k, double interval, double end) {
+  const double t = k * interval;
+  return t > end && t - end <= 1e-9 * interval ? end : t;
+}
+
+// The progress line on stderr (simulated time, rate, ETA), when stderr is a terminal.
+class Progress {
+ public:
+  Progress(bool enabled, double duration) : enabled_(enabled), duration_(duration), start_(clock::now()), last_(start_) {}
+  void update(double time);
+  void finish();
+
+ private:
+  using clock = std::chrono::steady_clock;
+  bool enabled_;
+  double duration_;
+  clock::time_point start_, last_;
+};
+
+// A run's --set assignments for summary.json's "case_overrides": one per line, so that a run
+// folder (e.g. one point of a sweep) names its exact case; split_overrides reads them back.
+std::string join_overrides(const std::vector<std::string>& overrides);
+std::vector<std::string> split_overrides(const std::string& joined);
+
+// Adds errors and warnings to summary.json, writes it atomically into `dir`, and repeats the
+// errors on stderr (unless `echo_errors` is false); returns `exit_status`.
+int finish_summary(io::JsonObject& summary, const std::string& dir, const std::vector<std::string>& errors,
+                   const std::vector<std::string>& warnings, int exit_status, bool echo_errors = true);
+
+// final_state.csv: every particle by id, with exact doubles so the state can start another run.
+void write_final_state(const std::string& path, const ParticleStore& p, const std::vector<SpeciesConfig>& species);
+
+}  // namespace grainflow::run
