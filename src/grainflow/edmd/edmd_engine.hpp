@@ -62,6 +62,10 @@ class EdmdEngine {
   static_assert(Dim == 2 || Dim == 3);
 
  public:
+  // The event queue keeps a pointer to event_time_: an engine stays where it was built.
+  EdmdEngine(const EdmdEngine&) = delete;
+  EdmdEngine& operator=(const EdmdEngine&) = delete;
+
   // `neighbor_lists` = false keeps the cell search where the list path would apply (for tests).
   explicit EdmdEngine(EdmdState state, bool neighbor_lists = true) : s_(std::move(state)) {
     const ParticleStore& p = s_.particles;

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <unistd.h>
@@ -117,27 +118,83 @@ void put(io::JsonObject& summary, const std::string& key, const MeanWithError& m
   if (std::isfinite(m.error)) summary.number(key + "_error", m.error);
 }
 
-}  // namespace
+// One DEM run: built from the case (observers, schedules, engine), then stepped, then written.
+// Each member function is one stage; the state they share is the members below.
+class DemRun {
+ public:
+  DemRun(const CaseConfig& c, const RunOptions& options);
+  int run();
 
-int run_dem(const CaseConfig& c, const RunOptions& options) {
-  namespace fs = std::filesystem;
-  const dem::DerivedQuantities derived = dem::derive(c);
-  // Under mpirun with several ranks each rank integrates a slab (dem/domain_exchange.hpp); rank 0
-  // sees the whole and writes every file.
+ private:
+  template <class E> void transfer(io::StateArchive& ar, E& e);
+  template <class E> void portable_run(io::StateArchive& ar, E& e);
+  template <class E> void restore_portable_run(io::StateArchive& ar, E& e);
+  template <class E> void checkpoint(E& e);
+  template <class E> const ParticleStore& all_particles(E& e);
+  template <class E> void record(E& e);
+  template <class E> void start(E& e);
+  template <class E> void step_loop(E& e);
+  void handle_failure_outside_loop();
+  template <class E> void write_outputs(E& e);
+  template <class E> void write_summary(E& e, long long moving, const observe::GlobalSample& global,
+                                        long long migrations, long long ghosts);
+  void snapshot(const dem::DemState& st);
+
+  const CaseConfig& c;
+  const RunOptions& options;
+  const dem::DerivedQuantities derived;
+  // Under mpirun with several ranks each rank integrates one box of a grid (dem/domain_exchange.hpp);
+  // rank 0 writes every file.
   const parallel::Communicator& comm = parallel::Communicator::world();
   const bool ranks = comm.size() > 1;
   const bool writes = comm.root();
   // Every observer runs on each rank over the rank's own particles and sums over the ranks through
   // this (the identity on one rank); particles are gathered on rank 0 only for final_state.csv.
   const observe::RankReduce rank_reduce = over_ranks(comm);
-  dem::DemState initial = dem::build_dem_state(c);
-  const long long particle_count = static_cast<long long>(initial.particles.size());
+  long long particle_count = 0;
   std::optional<io::Checkpoint> restart;
-  if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count, comm);
-  // A checkpoint of another rank count: its particles and clock go into the initial state now (the
+  // A checkpoint of another rank count: its particles and clock go into the initial state (the
   // sub-domains are placed on them), its contact memory into the engine once built.
   std::optional<io::StateArchive> portable_restart;
   dem::PortableParticles portable_particles;
+  std::string dir;
+  std::optional<io::PvdSeries> snapshots;
+  int axis = 1;
+  double area = 1.0;
+  double zones_lo = 0.0;
+  std::optional<observe::ZoneProfile> profile;
+  double dt = 0.0;
+  long total_steps = 0;
+  Schedule output_schedule{0.0, 1.0}, profile_schedule{0.0, 1.0}, snapshot_schedule{0.0, 1.0},
+      checkpoint_schedule{0.0, 1.0};  // set in the constructor once dt is known
+  long average_from = 0;
+  std::optional<TrajectoryOutput> trajectory;
+  std::optional<ZoneSeriesOutput> zone_series;
+  std::optional<FieldOutput> field;
+  std::optional<TracerOutput> tracers;
+  std::optional<dem::EngineDomain> domain;
+  std::unique_ptr<dem::DemEngineVariant> engine;  // built in place: an engine is not moved once built
+  observe::BedSurfaceThresholds bed_thresholds;
+  bool floor_below = false;  // bed height needs gravity toward the low face
+  std::vector<TimeseriesRow> rows;
+  std::vector<std::string> errors, warnings;
+  std::optional<Progress> progress;
+  std::chrono::steady_clock::time_point wall_start, last_flush;
+  double wall_seconds = 0.0;  // to the end of the loop, before the outputs are written
+  double max_overlap_seen = 0.0;
+  int exit_status = 0;
+  long first_step = 0;  // steps before this process's (a restart's checkpoint)
+  ParticleStore gathered;  // rank 0: all particles (final_state.csv, a checkpoint's datasets)
+  int interrupted = 0;
+  bool stopped_together = false;  // MPI: a failure every rank saw at the same output time
+};
+
+DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
+    : c(case_config), options(run_options), derived(dem::derive(case_config)) {
+  namespace fs = std::filesystem;
+  dem::DemState initial = dem::build_dem_state(c);
+  particle_count = static_cast<long long>(initial.particles.size());
+  if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count, comm);
   if (restart && restart->portable) {
     portable_restart.emplace(io::StateArchive::for_reading(restart->state, options.restart));
     portable_restart->tag("portable dem run");
@@ -145,245 +202,263 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
   }
 
   fs::create_directories(options.output_directory);
-  const std::string dir = options.output_directory;
-  std::optional<io::PvdSeries> snapshots;
+  dir = options.output_directory;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
-  auto snapshot = [&](const dem::DemState& st) {
-    if (ranks) snapshots->add_piece(st.particles, st.time, comm.rank(), comm.size());
-    else snapshots->add(st.particles, st.time);
-  };
 
-  const int axis = derived.gravity_axis;
+  axis = derived.gravity_axis;
   double zone_thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : derived.reference_diameter;
-  double area = 1.0;
   for (int a = 0; a < 3; ++a)
     if (a != axis) area *= c.domain.length(a);
   // Zones start at the floor's lowest reach, in whole zones below domain.lo, so that material under a
   // floor shaken below its rest position is still counted.
-  double zones_lo = c.domain.lo[axis];
+  zones_lo = c.domain.lo[axis];
   if (c.drive.enabled && c.drive.face == axis * 2)
     zones_lo -= zone_thickness * std::ceil(c.drive.amplitude[axis] / zone_thickness - 1e-9);
-  observe::ZoneProfile profile(axis, zones_lo, c.domain.hi[axis], zone_thickness, area);
-  profile.set_reduce(rank_reduce);
+  profile.emplace(axis, zones_lo, c.domain.hi[axis], zone_thickness, area);
+  profile->set_reduce(rank_reduce);
 
-  const double dt = derived.time_step;
-  const long total_steps = static_cast<long>(std::llround(c.run.duration / dt));
-  Schedule output_schedule(c.output.interval, dt);
+  dt = derived.time_step;
+  total_steps = static_cast<long>(std::llround(c.run.duration / dt));
+  output_schedule = Schedule(c.output.interval, dt);
   const double profile_interval = c.output.profile_interval > 0.0 ? c.output.profile_interval : c.output.interval / 10.0;
-  Schedule profile_schedule(profile_interval, dt);
-  Schedule snapshot_schedule(c.output.snapshot_interval, dt);
-  const long average_from = static_cast<long>(std::ceil(c.output.average_start / dt - 1e-9));
+  profile_schedule = Schedule(profile_interval, dt);
+  snapshot_schedule = Schedule(c.output.snapshot_interval, dt);
+  average_from = static_cast<long>(std::ceil(c.output.average_start / dt - 1e-9));
 
-  std::optional<TrajectoryOutput> trajectory;
   if (c.trajectory.enabled) trajectory.emplace(c, derived, initial.particles, dir, writes, rank_reduce);
-
-  std::optional<ZoneSeriesOutput> zone_series;
-  if (c.zone_series.enabled) zone_series.emplace(c, derived, profile, dir, writes);
-
-  std::optional<FieldOutput> field;
+  if (c.zone_series.enabled) zone_series.emplace(c, derived, *profile, dir, writes);
   if (c.field.enabled) field.emplace(c, derived, zones_lo);
-
-  std::optional<TracerOutput> tracers;
   if (c.tracers.enabled) tracers.emplace(c, derived, initial.particles);
 
-  // Under mpirun with several ranks each rank integrates one box of a grid (dem/domain_exchange.hpp).
-  std::optional<dem::EngineDomain> domain;
   if (ranks) domain = dem::EngineDomain{&comm, dem_grid(initial, comm.size())};
-  dem::DemEngineVariant engine = dem::make_engine(c, std::move(initial), options.threads, domain ? &*domain : nullptr);
+  engine.reset(new dem::DemEngineVariant(dem::make_engine(c, std::move(initial), options.threads, domain ? &*domain : nullptr)));
 
-  const observe::BedSurfaceThresholds bed_thresholds{c.output.bed_gap_fraction, c.output.bed_surface_fraction};
-  const bool floor_below = c.gravity[axis] < 0.0;  // bed height needs gravity toward the low face
+  bed_thresholds = observe::BedSurfaceThresholds{c.output.bed_gap_fraction, c.output.bed_surface_fraction};
+  floor_below = c.gravity[axis] < 0.0;
+  checkpoint_schedule = Schedule(c.output.checkpoint_interval, dt);
+  progress.emplace(!options.quiet && ::isatty(2) && writes, c.run.duration);
+  wall_start = std::chrono::steady_clock::now();
+  last_flush = wall_start;
+}
 
-  Schedule checkpoint_schedule(c.output.checkpoint_interval, dt);
-  std::vector<TimeseriesRow> rows;
-  std::vector<std::string> errors, warnings;
-  Progress progress(!options.quiet && ::isatty(2) && writes, c.run.duration);
-  const auto wall_start = std::chrono::steady_clock::now();
-  auto last_flush = wall_start;
-  double max_overlap_seen = 0.0;
-  int exit_status = 0;
-  long first_step = 0;  // steps before this process's (a restart's checkpoint)
+void DemRun::snapshot(const dem::DemState& st) {
+  if (ranks) snapshots->add_piece(st.particles, st.time, comm.rank(), comm.size());
+  else snapshots->add(st.particles, st.time);
+}
 
-  // All particles on rank 0 (for final_state.csv and a checkpoint's datasets); the engine's own on
-  // one rank.
-  ParticleStore gathered;
-  auto all_particles = [&](auto& e) -> const ParticleStore& {
-    if (!ranks) return e.state().particles;
-    gathered = gather_particles(e.state().particles, comm);
-    return gathered;
-  };
-  // The run's whole state, one function for both directions (checkpoint and restart).
-  auto transfer = [&](io::StateArchive& ar, auto& e) {
-    ar.tag("dem run");
-    ar(e, rows, profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
-    if (snapshots) ar(*snapshots);
-    if (field) ar(*field);
-    if (tracers) ar(*tracers);
-    if (trajectory) ar(*trajectory);
-    if (zone_series) ar(*zone_series);
-    ar.tag("end of dem run");
-  };
-  // The HDF5 streams are copied beside the checkpoint first: a checkpoint never counts more samples
-  // than its copies hold.
-  // The same in a form no decomposition shapes, for a restart on another rank count: the
-  // engine's state gathered by ids, the accumulators each rank holds a share of summed over the
-  // ranks (to be kept by one rank at the restart). Collective; rank 0's archive is the one written.
-  auto portable_run = [&](io::StateArchive& ar, auto& e) {
-    ar.tag("portable dem run");
-    write_portable_engine(ar, e, comm);
-    ar(rows, profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
-    if (snapshots) ar(*snapshots);
-    if (zone_series) ar(*zone_series);
-    if (field) {
-      FieldOutput whole = *field;
-      if (ranks) whole.field->sum_over_ranks(rank_reduce);
-      ar(whole);
-    }
-    if (tracers) {
-      TracerOutput whole = *tracers;
-      whole.rows = tracers->gathered_rows(comm);
-      ar(whole);
-    }
-    if (trajectory) {
-      observe::TrajectorySampler whole = *trajectory->sampler;
-      whole.sum_open_window();
-      ar(whole);
-    }
-    ar.tag("end of portable dem run");
-  };
-  auto restore_portable_run = [&](io::StateArchive& ar, auto& e) {
-    read_portable_contacts(ar, e, portable_particles, writes);
-    ar(rows, profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
-    if (snapshots) ar(*snapshots);
-    if (zone_series) ar(*zone_series);
-    // Rank 0 keeps the summed accumulators; the other ranks add their shares from here on.
-    if (field) {
-      ar(*field);
-      if (!writes) field->field->clear_sums();
-    }
-    if (tracers) {
-      ar(*tracers);
-      if (!writes) tracers->rows.clear();
-    }
-    if (trajectory) {
-      ar(*trajectory->sampler);
-      if (!writes) trajectory->sampler->clear_open_window();
-    }
-    ar.tag("end of portable dem run");
-    ar.expect_end();
-  };
-  // Several MPI ranks: each rank's own state, gathered by rank 0 into the one file, and the
-  // portable state.
-  auto checkpoint = [&](auto& e) {
-    if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
-    if (zone_series) zone_series->copy_stream(dir + "/checkpoint_zone_series.h5");
-    io::StateArchive portable = io::StateArchive::for_writing();
-    portable_run(portable, e);
-    write_run_checkpoint(dir, c, all_particles(e), e.state().time, e.state().step,
-                         [&](io::StateArchive& ar) { transfer(ar, e); }, comm, portable.bytes());
-    gathered = ParticleStore{};
-  };
-  int interrupted = 0;
-  bool stopped_together = false;  // MPI: a failure every rank saw at the same output time
+// All particles on rank 0 (for final_state.csv and a checkpoint's datasets); the engine's own on
+// one rank.
+template <class E>
+const ParticleStore& DemRun::all_particles(E& e) {
+  if (!ranks) return e.state().particles;
+  gathered = gather_particles(e.state().particles, comm);
+  return gathered;
+}
 
-  auto record = [&](auto& e) {
-    // NaN or a particle through a wall: stop here (issue 7), on every rank at once.
-    std::string fault;
-    try {
-      dem::check_faults(e.state(), derived);
-    } catch (const RunError& error) {
-      fault = error.what();
-    }
-    if (ranks) fault = fault_on_any_rank(fault, comm);
-    if (!fault.empty()) {
-      stopped_together = true;
-      throw RunError(fault);
-    }
-    // Each rank measures its own particles; the sums are added over the ranks.
-    const auto& st = e.state();
-    const dem::ContactStatistics stats = ranks ? global_statistics(e.statistics(), comm) : e.statistics();
-    TimeseriesRow row{};
-    row.time = st.time;
-    row.global = observe::sample_global(st.particles, axis, rank_reduce);
-    const FloorMotion floor = floor_motion(st, c);
-    row.floor_position = floor.position;
-    row.floor_velocity = floor.velocity;
-    row.max_overlap_ratio = stats.max_overlap_ratio;
-    row.contacts = stats.contacts;
-    row.wall_contacts = stats.wall_contacts;
-    row.rebuilds = stats.rebuilds;
-    row.collisions = stats.collisions;
-    row.wall_collisions = stats.wall_collisions;
-    if (floor_below)
-      row.bed = observe::measure_bed_surface(st.particles, axis, floor_position(st, c, axis), area,
-                                             derived.reference_diameter, bed_thresholds, rank_reduce);
-    row.cell_temperature = profile.instantaneous_temperature(st.particles);
-    e.statistics().max_overlap_ratio = 0.0;
-    rows.push_back(row);
-    // Radius expansion (section 2.2) overlaps growing spheres on purpose: monitor only after it.
-    // The settling before a drive starts is not monitored either: Lan's 1% criterion calibrates K1
-    // for the shaken bed, and grains poured from a height land harder than the floor drives them.
-    const bool expanding = st.expansion_rate > 0.0;
-    const bool settling = c.drive.enabled && c.drive.start > 0.0 && st.time <= c.drive.start;
-    const bool monitored = !expanding && !settling;
-    if (monitored) max_overlap_seen = std::max(max_overlap_seen, row.max_overlap_ratio);
-    if (monitored && c.run.halt_overlap > 0.0 && row.max_overlap_ratio > c.run.halt_overlap) {
-      stopped_together = true;  // the overlap is the maximum over all ranks: each stops here
-      throw RunError(dem::overlap_halt_message(e.state(), e.pairs(), derived, row.max_overlap_ratio, c.run.halt_overlap));
-    }
-  };
+// The run's whole state, one function for both directions (checkpoint and restart).
+template <class E>
+void DemRun::transfer(io::StateArchive& ar, E& e) {
+  ar.tag("dem run");
+  ar(e, rows, *profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
+  if (snapshots) ar(*snapshots);
+  if (field) ar(*field);
+  if (tracers) ar(*tracers);
+  if (trajectory) ar(*trajectory);
+  if (zone_series) ar(*zone_series);
+  ar.tag("end of dem run");
+}
 
+// The same in a form no decomposition shapes, for a restart on another rank count: the engine's
+// state gathered by ids, the accumulators each rank holds a share of summed over the ranks (to be
+// kept by one rank at the restart). Collective; rank 0's archive is the one written.
+template <class E>
+void DemRun::portable_run(io::StateArchive& ar, E& e) {
+  ar.tag("portable dem run");
+  write_portable_engine(ar, e, comm);
+  ar(rows, *profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
+  if (snapshots) ar(*snapshots);
+  if (zone_series) ar(*zone_series);
+  if (field) {
+    FieldOutput whole = *field;
+    if (ranks) whole.field->sum_over_ranks(rank_reduce);
+    ar(whole);
+  }
+  if (tracers) {
+    TracerOutput whole = *tracers;
+    whole.rows = tracers->gathered_rows(comm);
+    ar(whole);
+  }
+  if (trajectory) {
+    observe::TrajectorySampler whole = *trajectory->sampler;
+    whole.sum_open_window();
+    ar(whole);
+  }
+  ar.tag("end of portable dem run");
+}
+
+template <class E>
+void DemRun::restore_portable_run(io::StateArchive& ar, E& e) {
+  read_portable_contacts(ar, e, portable_particles, writes);
+  ar(rows, *profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
+  if (snapshots) ar(*snapshots);
+  if (zone_series) ar(*zone_series);
+  // Rank 0 keeps the summed accumulators; the other ranks add their shares from here on.
+  if (field) {
+    ar(*field);
+    if (!writes) field->field->clear_sums();
+  }
+  if (tracers) {
+    ar(*tracers);
+    if (!writes) tracers->rows.clear();
+  }
+  if (trajectory) {
+    ar(*trajectory->sampler);
+    if (!writes) trajectory->sampler->clear_open_window();
+  }
+  ar.tag("end of portable dem run");
+  ar.expect_end();
+}
+
+// The HDF5 streams are copied beside the checkpoint first: a checkpoint never counts more samples
+// than its copies hold. Several MPI ranks: each rank's own state, gathered by rank 0 into the one
+// file, and the portable state.
+template <class E>
+void DemRun::checkpoint(E& e) {
+  if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
+  if (zone_series) zone_series->copy_stream(dir + "/checkpoint_zone_series.h5");
+  io::StateArchive portable = io::StateArchive::for_writing();
+  portable_run(portable, e);
+  write_run_checkpoint(dir, c, all_particles(e), e.state().time, e.state().step,
+                       [&](io::StateArchive& ar) { transfer(ar, e); }, comm, portable.bytes());
+  gathered = ParticleStore{};
+}
+
+// One time-series row; the faults and the overlap halt stop the run here, on every rank at once.
+template <class E>
+void DemRun::record(E& e) {
+  std::string fault;
+  try {
+    dem::check_faults(e.state(), derived);
+  } catch (const RunError& error) {
+    fault = error.what();
+  }
+  if (ranks) fault = fault_on_any_rank(fault, comm);
+  if (!fault.empty()) {
+    stopped_together = true;
+    throw RunError(fault);
+  }
+  // Each rank measures its own particles; the sums are added over the ranks.
+  const auto& st = e.state();
+  const dem::ContactStatistics stats = ranks ? global_statistics(e.statistics(), comm) : e.statistics();
+  TimeseriesRow row{};
+  row.time = st.time;
+  row.global = observe::sample_global(st.particles, axis, rank_reduce);
+  const FloorMotion floor = floor_motion(st, c);
+  row.floor_position = floor.position;
+  row.floor_velocity = floor.velocity;
+  row.max_overlap_ratio = stats.max_overlap_ratio;
+  row.contacts = stats.contacts;
+  row.wall_contacts = stats.wall_contacts;
+  row.rebuilds = stats.rebuilds;
+  row.collisions = stats.collisions;
+  row.wall_collisions = stats.wall_collisions;
+  if (floor_below)
+    row.bed = observe::measure_bed_surface(st.particles, axis, floor_position(st, c, axis), area,
+                                           derived.reference_diameter, bed_thresholds, rank_reduce);
+  row.cell_temperature = profile->instantaneous_temperature(st.particles);
+  e.statistics().max_overlap_ratio = 0.0;
+  rows.push_back(row);
+  // Radius expansion (section 2.2) overlaps growing spheres on purpose: monitor only after it.
+  // The settling before a drive starts is not monitored either: Lan's 1% criterion calibrates K1
+  // for the shaken bed, and grains poured from a height land harder than the floor drives them.
+  const bool expanding = st.expansion_rate > 0.0;
+  const bool settling = c.drive.enabled && c.drive.start > 0.0 && st.time <= c.drive.start;
+  const bool monitored = !expanding && !settling;
+  if (monitored) max_overlap_seen = std::max(max_overlap_seen, row.max_overlap_ratio);
+  if (monitored && c.run.halt_overlap > 0.0 && row.max_overlap_ratio > c.run.halt_overlap) {
+    stopped_together = true;  // the overlap is the maximum over all ranks: each stops here
+    throw RunError(dem::overlap_halt_message(e.state(), e.pairs(), derived, row.max_overlap_ratio, c.run.halt_overlap));
+  }
+}
+
+// A fresh start records t = 0; a restart reads its state back (this rank count's, or portable).
+template <class E>
+void DemRun::start(E& e) {
+  if (portable_restart) {
+    restore_portable_run(*portable_restart, e);
+    warnings.push_back("continued on " + std::to_string(comm.size()) + " MPI rank(s) from a checkpoint of " +
+                       std::to_string(restart->header.ranks) +
+                       ": the same state and physics, but not the same bits as a run that never stopped "
+                       "(the neighbour lists were built afresh, so forces add up in another order)");
+  } else if (restart) {
+    restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
+  }
+  if (restart) {
+    const std::string beside = checkpoint_folder(options.restart);
+    if (trajectory) trajectory->resume_stream(beside + "/checkpoint_trajectory.h5");
+    if (zone_series) zone_series->resume_stream(beside + "/checkpoint_zone_series.h5");
+    first_step = e.state().step;
+  } else {
+    record(e);
+    if (snapshots) snapshot(e.state());
+  }
+}
+
+template <class E>
+void DemRun::step_loop(E& e) {
+  for (long step = e.state().step + 1; step <= total_steps; ++step) {
+    // Under MPI the ranks agree every 100 steps, so that all stop at the same step.
+    if (!ranks) interrupted = pending_interrupt();
+    else if (step % 100 == 0) interrupted = static_cast<int>(comm.max(pending_interrupt()));
+    if (interrupted != 0) break;
+    e.step();
+    if (trajectory) trajectory->sampler->observe(e.state().particles, e.state().box, e.state().time - dt, e.state().time);
+    if (zone_series) zone_series->observe(e.state(), *profile, c);
+    if (field) field->observe(e.state(), c);
+    if (tracers) tracers->observe(e, c);
+    // Each rank samples its own particles; the zone sums are added over the ranks.
+    if (profile_schedule.due(step) && step >= average_from) profile->sample(e.state().particles);
+    if (output_schedule.due(step)) {
+      record(e);
+      progress->update(e.state().time);
+      // Every 30 s of wall time the files so far are written (decided together: tracers gather).
+      const auto now = std::chrono::steady_clock::now();
+      if (comm.any(now - last_flush > std::chrono::seconds(30))) {
+        if (writes) write_timeseries(dir + "/timeseries.csv", rows);
+        if (tracers) tracers->write(dir + "/tracers.csv", comm);
+        last_flush = now;
+      }
+    }
+    if (snapshot_schedule.due(step)) snapshot(e.state());
+    if (checkpoint_schedule.due(step) && step < total_steps) checkpoint(e);
+  }
+  // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
+  if (interrupted != 0 || c.output.checkpoint_interval > 0.0) checkpoint(e);
+}
+
+// A fault seen on one rank inside a step cannot reach the others, which wait in the next exchange:
+// stop all. An interruption becomes the run's error and exit status 128 + signal.
+void DemRun::handle_failure_outside_loop() {
+  if (ranks && exit_status != 0 && !stopped_together) {
+    std::cerr << "grainflow: rank " << comm.rank() << ": run failed: " << errors.back()
+              << " (found inside a step on one rank, so every rank stops without writing the outputs)\n";
+    comm.abort(1);
+  }
+  if (interrupted != 0) {
+    const double t = std::visit([](auto& e) { return e.state().time; }, *engine);
+    errors.push_back(interrupted_message(interrupted, t, " s", c, dir));
+    exit_status = 128 + interrupted;
+  }
+}
+
+int DemRun::run() {
   try {
     std::visit(
         [&](auto& e) {
-          if (portable_restart) {
-            restore_portable_run(*portable_restart, e);
-            warnings.push_back("continued on " + std::to_string(comm.size()) + " MPI rank(s) from a checkpoint of " +
-                               std::to_string(restart->header.ranks) +
-                               ": the same state and physics, but not the same bits as a run that never stopped "
-                               "(the neighbour lists were built afresh, so forces add up in another order)");
-          } else if (restart) {
-            restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
-          }
-          if (restart) {
-            const std::string beside = checkpoint_folder(options.restart);
-            if (trajectory) trajectory->resume_stream(beside + "/checkpoint_trajectory.h5");
-            if (zone_series) zone_series->resume_stream(beside + "/checkpoint_zone_series.h5");
-            first_step = e.state().step;
-          } else {
-            record(e);
-            if (snapshots) snapshot(e.state());
-          }
-          for (long step = e.state().step + 1; step <= total_steps; ++step) {
-            // Under MPI the ranks agree every 100 steps, so that all stop at the same step.
-            if (!ranks) interrupted = pending_interrupt();
-            else if (step % 100 == 0) interrupted = static_cast<int>(comm.max(pending_interrupt()));
-            if (interrupted != 0) break;
-            e.step();
-            if (trajectory) trajectory->sampler->observe(e.state().particles, e.state().box, e.state().time - dt, e.state().time);
-            if (zone_series) zone_series->observe(e.state(), profile, c);
-            if (field) field->observe(e.state(), c);
-            if (tracers) tracers->observe(e, c);
-            // Each rank samples its own particles; the zone sums are added over the ranks.
-            if (profile_schedule.due(step) && step >= average_from) profile.sample(e.state().particles);
-            if (output_schedule.due(step)) {
-              record(e);
-              progress.update(e.state().time);
-              // Every 30 s of wall time the files so far are written (decided together: tracers gather).
-              const auto now = std::chrono::steady_clock::now();
-              if (comm.any(now - last_flush > std::chrono::seconds(30))) {
-                if (writes) write_timeseries(dir + "/timeseries.csv", rows);
-                if (tracers) tracers->write(dir + "/tracers.csv", comm);
-                last_flush = now;
-              }
-            }
-            if (snapshot_schedule.due(step)) snapshot(e.state());
-            if (checkpoint_schedule.due(step) && step < total_steps) checkpoint(e);
-          }
-          // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
-          if (interrupted != 0 || c.output.checkpoint_interval > 0.0) checkpoint(e);
+          start(e);
+          step_loop(e);
         },
-        engine);
+        *engine);
   } catch (const dem::NonFiniteState& fault) {  // found by the engine, which does not know the case
     std::string message = dem::with_cause(fault, derived);
     if (ranks) {  // every rank threw at the same rebuild: rank 0 reports the faulty rank's message
@@ -397,124 +472,124 @@ int run_dem(const CaseConfig& c, const RunOptions& options) {
     errors.push_back(error.what());
     exit_status = 1;
   }
-  if (ranks && exit_status != 0 && !stopped_together) {
-    // A fault seen on one rank cannot reach the others, which wait in the next exchange: stop all.
-    std::cerr << "grainflow: rank " << comm.rank() << ": run failed: " << errors.back()
-              << " (found inside a step on one rank, so every rank stops without writing the outputs)\n";
-    comm.abort(1);
-  }
-  if (interrupted != 0) {
-    const double t = std::visit([](auto& e) { return e.state().time; }, engine);
-    errors.push_back(interrupted_message(interrupted, t, " s", c, dir));
-    exit_status = 128 + interrupted;
-  }
-  progress.finish();
+  handle_failure_outside_loop();
+  progress->finish();
   if (trajectory) trajectory->finish(warnings);
   if (zone_series) zone_series->finish(warnings);
-  const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-
-  std::visit(
-      [&](auto& e) {
-        const auto& st = e.state();
-        const ParticleStore& everyone = all_particles(e);  // rank 0: every rank's, for final_state.csv
-        long long moving = 0;
-        for (std::size_t i = 0; i < st.particles.size(); ++i) moving += st.particles.counted(i);
-        moving = ranks ? comm.sum(moving) : moving;
-        const auto global = observe::sample_global(st.particles, axis, rank_reduce);
-        const long long migrations = e.domain() ? comm.sum(e.domain()->migrated()) : 0;
-        const long long ghosts = e.domain() ? comm.sum(e.domain()->ghosts()) : 0;
-        if (field && ranks) field->field->sum_over_ranks(rank_reduce);
-        if (tracers) tracers->write(dir + "/tracers.csv", comm);  // collective: rank 0 writes
-        if (!writes) return;  // rank 0 writes the run's other files
-        write_timeseries(dir + "/timeseries.csv", rows);
-        write_profiles(dir + "/profiles.csv", profile, derived.reference_diameter, derived.gravity_magnitude);
-        write_final_state(dir + "/final_state.csv", everyone, st.species);
-        if (field) field->write(dir, c);
-
-        double mean_temperature = 0.0;
-        long counted = 0;
-        for (const auto& r : rows)
-          if (r.time >= c.output.average_start) {
-            mean_temperature += r.global.granular_temperature;
-            ++counted;
-          }
-        io::JsonObject summary;
-        summary.string("engine", "dem");
-        summary.integer("dimension", 3);
-        summary.integer("particles", moving);
-        summary.integer("fixed_particles", particle_count - moving);
-        summary.string("case", c.path);
-        summary.string("case_overrides", join_overrides(c.overrides));
-        summary.string("version", kVersion);
-        summary.string("contact_model", c.contact.model);
-        summary.number("simulated_time", st.time);
-        summary.number("wall_seconds", wall_seconds);
-        summary.integer("steps", st.step);
-        summary.number("time_step", st.time_step);
-        summary.integer("threads", options.threads);
-        summary.integer("mpi_ranks", comm.size());
-        if (e.domain()) {  // the decomposition, and how much crossed it
-          const auto& grid = e.domain()->grid();
-          summary.string("mpi_grid", std::to_string(grid.shape[0]) + "x" + std::to_string(grid.shape[1]) + "x" +
-                                         std::to_string(grid.shape[2]));
-          summary.integer("mpi_migrations", migrations);
-          summary.integer("mpi_ghosts", ghosts);
-          summary.integer("mpi_rebalances", e.domain()->rebalances());
-          summary.string("mpi_bounds", [&] {  // the final cuts along each cut axis
-            std::string text;
-            for (int a = 0; a < 3; ++a) {
-              if (!grid.cut(a)) continue;
-              text += std::string(text.empty() ? "" : "; ") + "xyz"[a] + ":";
-              for (double b : grid.bounds[a]) text += " " + std::to_string(b);
-            }
-            return text;
-          }());
-        }
-        summary.number("particle_steps_per_second",
-                       wall_seconds > 0 ? moving * double(st.step - first_step) / wall_seconds : 0.0);
-        if (restart) summary.string("restarted_from", options.restart);
-        summary.number("max_overlap_over_diameter", max_overlap_seen);
-        summary.number("kinetic_energy", global.kinetic_energy);
-        summary.number("rotational_energy", global.rotational_energy);
-        summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
-        summary.integer("profile_samples", profile.samples());
-        // Lan's dimensionless groups (eqs. 4-1-2, 4-1-3) and Gamma, so sweeps can plot against them.
-        summary.integer("gravity_axis", axis);
-        summary.number("mass_holdup", derived.mass_holdup);
-        summary.number("boundary_fluctuation_velocity", derived.boundary_fluctuation_velocity);
-        summary.number("shaking_acceleration", derived.shaking_acceleration);
-        // Long-term means over the rows after output.average_start, with blocked standard errors.
-        const double from = c.output.average_start;
-        put(summary, "cell_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.cell_temperature; }));
-        if (floor_below) {
-          put(summary, "bed_height", series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.height; }));
-          put(summary, "bulk_solids_fraction",
-              series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.bulk_solids_fraction; }));
-        }
-        // Collisions per particle: contacts begun within the averaging window, per moving particle.
-        const auto first = std::find_if(rows.begin(), rows.end(), [&](const TimeseriesRow& r) { return r.time >= from - 1e-12; });
-        if (first != rows.end() && moving > 0 && rows.back().time > first->time) {
-          const double span = rows.back().time - first->time;
-          const double begun = 2.0 * static_cast<double>(rows.back().collisions - first->collisions);  // two partners each
-          summary.number("collisions_per_particle", begun / moving);
-          summary.number("collision_rate_per_particle", begun / moving / span);
-          summary.number("wall_collision_rate_per_particle",
-                         static_cast<double>(rows.back().wall_collisions - first->wall_collisions) / moving / span);
-        }
-        // Height of the long-term density peak above the floor's rest position, in diameters (Fig. A4.8).
-        const auto zones = profile.averages();
-        if (!zones.empty() && profile.samples() > 0) {
-          const auto peak = std::max_element(zones.begin(), zones.end(), [](const auto& a, const auto& b) {
-            return a.solids_fraction < b.solids_fraction;
-          });
-          summary.number("density_peak_Y", (0.5 * (peak->lo + peak->hi) - c.domain.lo[axis]) / derived.reference_diameter);
-        }
-        if (field) summary.number("convection_speed", field->field->convection_speed());
-        summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
-        exit_status = finish_summary(summary, dir, errors, warnings, exit_status, options.echo_errors);
-      },
-      engine);
+  wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  std::visit([&](auto& e) { write_outputs(e); }, *engine);
   return exit_status;
 }
+
+template <class E>
+void DemRun::write_outputs(E& e) {
+  const auto& st = e.state();
+  const ParticleStore& everyone = all_particles(e);  // rank 0: every rank's, for final_state.csv
+  long long moving = 0;
+  for (std::size_t i = 0; i < st.particles.size(); ++i) moving += st.particles.counted(i);
+  moving = ranks ? comm.sum(moving) : moving;
+  const auto global = observe::sample_global(st.particles, axis, rank_reduce);
+  const long long migrations = e.domain() ? comm.sum(e.domain()->migrated()) : 0;
+  const long long ghosts = e.domain() ? comm.sum(e.domain()->ghosts()) : 0;
+  if (field && ranks) field->field->sum_over_ranks(rank_reduce);
+  if (tracers) tracers->write(dir + "/tracers.csv", comm);  // collective: rank 0 writes
+  if (!writes) return;  // rank 0 writes the run's other files
+  write_timeseries(dir + "/timeseries.csv", rows);
+  write_profiles(dir + "/profiles.csv", *profile, derived.reference_diameter, derived.gravity_magnitude);
+  write_final_state(dir + "/final_state.csv", everyone, st.species);
+  if (field) field->write(dir, c);
+  write_summary(e, moving, global, migrations, ghosts);
+}
+
+template <class E>
+void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& global, long long migrations,
+                           long long ghosts) {
+  const auto& st = e.state();
+  double mean_temperature = 0.0;
+  long counted = 0;
+  for (const auto& r : rows)
+    if (r.time >= c.output.average_start) {
+      mean_temperature += r.global.granular_temperature;
+      ++counted;
+    }
+  io::JsonObject summary;
+  summary.string("engine", "dem");
+  summary.integer("dimension", 3);
+  summary.integer("particles", moving);
+  summary.integer("fixed_particles", particle_count - moving);
+  summary.string("case", c.path);
+  summary.string("case_overrides", join_overrides(c.overrides));
+  summary.string("version", kVersion);
+  summary.string("contact_model", c.contact.model);
+  summary.number("simulated_time", st.time);
+  summary.number("wall_seconds", wall_seconds);
+  summary.integer("steps", st.step);
+  summary.number("time_step", st.time_step);
+  summary.integer("threads", options.threads);
+  summary.integer("mpi_ranks", comm.size());
+  if (e.domain()) {  // the decomposition, and how much crossed it
+    const auto& grid = e.domain()->grid();
+    summary.string("mpi_grid", std::to_string(grid.shape[0]) + "x" + std::to_string(grid.shape[1]) + "x" +
+                                   std::to_string(grid.shape[2]));
+    summary.integer("mpi_migrations", migrations);
+    summary.integer("mpi_ghosts", ghosts);
+    summary.integer("mpi_rebalances", e.domain()->rebalances());
+    summary.string("mpi_bounds", [&] {  // the final cuts along each cut axis
+      std::string text;
+      for (int a = 0; a < 3; ++a) {
+        if (!grid.cut(a)) continue;
+        text += std::string(text.empty() ? "" : "; ") + "xyz"[a] + ":";
+        for (double b : grid.bounds[a]) text += " " + std::to_string(b);
+      }
+      return text;
+    }());
+  }
+  summary.number("particle_steps_per_second",
+                 wall_seconds > 0 ? moving * double(st.step - first_step) / wall_seconds : 0.0);
+  if (restart) summary.string("restarted_from", options.restart);
+  summary.number("max_overlap_over_diameter", max_overlap_seen);
+  summary.number("kinetic_energy", global.kinetic_energy);
+  summary.number("rotational_energy", global.rotational_energy);
+  summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
+  summary.integer("profile_samples", profile->samples());
+  // Lan's dimensionless groups (eqs. 4-1-2, 4-1-3) and Gamma, so sweeps can plot against them.
+  summary.integer("gravity_axis", axis);
+  summary.number("mass_holdup", derived.mass_holdup);
+  summary.number("boundary_fluctuation_velocity", derived.boundary_fluctuation_velocity);
+  summary.number("shaking_acceleration", derived.shaking_acceleration);
+  // Long-term means over the rows after output.average_start, with blocked standard errors.
+  const double from = c.output.average_start;
+  put(summary, "cell_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.cell_temperature; }));
+  if (floor_below) {
+    put(summary, "bed_height", series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.height; }));
+    put(summary, "bulk_solids_fraction",
+        series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.bulk_solids_fraction; }));
+  }
+  // Collisions per particle: contacts begun within the averaging window, per moving particle.
+  const auto first = std::find_if(rows.begin(), rows.end(), [&](const TimeseriesRow& r) { return r.time >= from - 1e-12; });
+  if (first != rows.end() && moving > 0 && rows.back().time > first->time) {
+    const double span = rows.back().time - first->time;
+    const double begun = 2.0 * static_cast<double>(rows.back().collisions - first->collisions);  // two partners each
+    summary.number("collisions_per_particle", begun / moving);
+    summary.number("collision_rate_per_particle", begun / moving / span);
+    summary.number("wall_collision_rate_per_particle",
+                   static_cast<double>(rows.back().wall_collisions - first->wall_collisions) / moving / span);
+  }
+  // Height of the long-term density peak above the floor's rest position, in diameters (Fig. A4.8).
+  const auto zones = profile->averages();
+  if (!zones.empty() && profile->samples() > 0) {
+    const auto peak = std::max_element(zones.begin(), zones.end(), [](const auto& a, const auto& b) {
+      return a.solids_fraction < b.solids_fraction;
+    });
+    summary.number("density_peak_Y", (0.5 * (peak->lo + peak->hi) - c.domain.lo[axis]) / derived.reference_diameter);
+  }
+  if (field) summary.number("convection_speed", field->field->convection_speed());
+  summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
+  exit_status = finish_summary(summary, dir, errors, warnings, exit_status, options.echo_errors);
+}
+
+}  // namespace
+
+int run_dem(const CaseConfig& c, const RunOptions& options) { return DemRun(c, options).run(); }
 
 }  // namespace grainflow::run

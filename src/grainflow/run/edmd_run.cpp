@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <memory>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -42,261 +43,313 @@ struct Row {
 using EdmdVariant = std::variant<edmd::EdmdEngine<2>, edmd::EdmdEngine<3>>;
 constexpr double kNeverTime = std::numeric_limits<double>::infinity();
 
-}  // namespace
+// One event-driven run: built from the case, advanced from sample time to sample time, written.
+// Each member function is one stage; the state they share is the members below.
+class EdmdRun {
+ public:
+  EdmdRun(const CaseConfig& c, const RunOptions& options);
+  int run();
 
-int run_edmd(const CaseConfig& c, const RunOptions& options) {
-  namespace fs = std::filesystem;
-  const int dim = c.engine.dimension;
-  if (parallel::Communicator::world().size() > 1)
-    throw InputError(c.path, "engine.kind",
-                     "the event-driven engine runs on one rank; start it without mpirun (docs/SCALING.md says how it "
-                     "would be parallelised)");
-  edmd::EdmdState initial = edmd::build_edmd_state(c);
+ private:
+  template <class E> double current_measure(const E& e) const;
+  template <class E> void record(E& e);
+  template <class E> void transfer(io::StateArchive& ar, E& e);
+  template <class E> void checkpoint(E& e);
+  template <class E> void start(E& e);
+  template <class E> void event_loop(E& e);
+  template <class E> void write_timeseries(E& e) const;
+  template <class E> void write_outputs(E& e);
+
+  const CaseConfig& c;
+  const RunOptions& options;
+  const int dim;
   std::optional<io::Checkpoint> restart;
-  if (!options.restart.empty())
-    restart = read_restart(options.restart, c, static_cast<long long>(initial.particles.size()));
-  EdmdProfiles profiles(c, initial);
-  EdmdVariant engine = dim == 2 ? EdmdVariant(std::in_place_index<0>, std::move(initial))
-                                : EdmdVariant(std::in_place_index<1>, std::move(initial));
-  fs::create_directories(options.output_directory);
-  const std::string dir = options.output_directory;
+  std::optional<EdmdProfiles> profiles;
+  std::unique_ptr<EdmdVariant> engine;  // built in place: an engine is not moved once built
+  std::string dir;
   std::optional<io::PvdSeries> snapshots;
-  if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
   std::optional<EdmdTrajectoryOutput> trajectory;  // [trajectory]: instantaneous states for the distributions
-  if (c.trajectory.enabled) std::visit([&](auto& e) { trajectory.emplace(c, e.state(), dir); }, engine);
-
-  // Box measure: area in 2D, volume in 3D; a Couette cell's follows its walls and width.
-  double measure = 1.0;
-  for (int a = 0; a < dim; ++a) measure *= c.domain.length(a);
-  auto current_measure = [&](const auto& e) {
-    if (!c.servo.enabled) return measure;
-    return e.servo().gap * e.servo().width * (dim == 3 ? c.domain.length(2) : 1.0);
-  };
-  const int gravity_axis = std::fabs(c.gravity.x) > std::fabs(c.gravity.y) ? 0 : 1;
-
+  double measure = 1.0;  // box area in 2D, volume in 3D (a Couette cell's follows its walls and width)
+  int gravity_axis = 1;
   std::vector<Row> rows;
   std::vector<std::string> errors, warnings;
-  Progress progress(!options.quiet && ::isatty(2), c.run.duration);
-  const auto wall_start = std::chrono::steady_clock::now();
+  std::optional<Progress> progress;
+  std::chrono::steady_clock::time_point wall_start;
+  double wall_seconds = 0.0;  // to the end of the loop, before the outputs are written
   int exit_status = 0;
   double last_time = 0.0, last_virial = 0.0;
   // Long-term sums from average_start: time-integrated kinetic "m v^2" sum and the virial.
   double average_kinetic = 0.0, average_temperature = 0.0, average_virial = 0.0, average_span = 0.0;
   long average_rows = 0;
-
-  auto record = [&](auto& e) {
-    const auto& st = e.state();
-    edmd::check_faults(st);  // NaN or a particle through a wall: stop here (issue 7)
-    auto& k = e.counters();
-    Row row{};
-    row.time = st.time;
-    row.global = observe::sample_global(st.particles, gravity_axis);
-    // The kinetic temperature per degree of freedom uses the number of dimensions.
-    row.global.granular_temperature *= 3.0 / dim;
-    row.collisions = k.collisions;
-    row.wall_collisions = k.wall_collisions;
-    row.events = k.events;
-    row.dissipated = k.dissipated;
-    row.servo = e.servo();
-    const double span = st.time - last_time;
-    // Kinetic part from velocities about the mass-mean one (as the temperature), so a mean flow is
-    // not counted as pressure: sum m v'^2 = d M T.
-    const double kinetic = dim * row.global.mass * row.global.granular_temperature;
-    row.pressure = (kinetic + (span > 0.0 ? (k.virial - last_virial) / span : 0.0)) / (dim * current_measure(e));
-    const bool averaging = st.time > c.output.average_start && k.collisions >= c.output.average_start_collisions;
-    if (averaging && span > 0.0) {
-      average_kinetic += kinetic;
-      average_temperature += row.global.granular_temperature;
-      ++average_rows;
-      average_virial += k.virial - last_virial;
-      average_span += span;
-    }
-    last_time = st.time;
-    last_virial = k.virial;
-    rows.push_back(row);
-  };
-
   // Stresses, wall loads and collision angles from the collisions, sampled with the strip profiles.
   std::optional<EdmdCollisionOutputs> collision_outputs;
-
-  const double end_time = c.run.duration;
+  double end_time = 0.0;
   // Rows, snapshots, samples and checkpoints each on their own exact grid k * interval.
   long row = 1, shot = 1, checkpoints = 1;
-  // The run's whole state, one function for both directions (checkpoint and restart).
-  auto transfer = [&](io::StateArchive& ar, auto& e) {
-    ar.tag("edmd run");
-    ar(e, rows, last_time, last_virial, average_kinetic, average_temperature, average_virial, average_span, average_rows);
-    ar(row, shot, checkpoints, profiles);
-    if (collision_outputs) ar(*collision_outputs);
-    if (snapshots) ar(*snapshots);
-    if (trajectory) ar(*trajectory);
-    ar.tag("end of edmd run");
-  };
-  // trajectory.h5 is copied beside the checkpoint first: a checkpoint never counts more samples
-  // than its copy holds.
-  auto checkpoint = [&](auto& e) {
-    if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
-    write_run_checkpoint(dir, c, e.state().particles, e.state().time, e.counters().events,
-                         [&](io::StateArchive& ar) { transfer(ar, e); });
-  };
   int interrupted = 0;
   long long first_events = 0, first_collisions = 0;  // before this process (a restart's checkpoint)
+};
+
+EdmdRun::EdmdRun(const CaseConfig& case_config, const RunOptions& run_options)
+    : c(case_config), options(run_options), dim(case_config.engine.dimension) {
+  namespace fs = std::filesystem;
+  if (parallel::Communicator::world().size() > 1)
+    throw InputError(c.path, "engine.kind",
+                     "the event-driven engine runs on one rank; start it without mpirun (docs/SCALING.md says how it "
+                     "would be parallelised)");
+  edmd::EdmdState initial = edmd::build_edmd_state(c);
+  if (!options.restart.empty())
+    restart = read_restart(options.restart, c, static_cast<long long>(initial.particles.size()));
+  profiles.emplace(c, initial);
+  engine.reset(dim == 2 ? new EdmdVariant(std::in_place_index<0>, std::move(initial))
+                        : new EdmdVariant(std::in_place_index<1>, std::move(initial)));
+  fs::create_directories(options.output_directory);
+  dir = options.output_directory;
+  if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
+  if (c.trajectory.enabled) std::visit([&](auto& e) { trajectory.emplace(c, e.state(), dir); }, *engine);
+  for (int a = 0; a < dim; ++a) measure *= c.domain.length(a);
+  gravity_axis = std::fabs(c.gravity.x) > std::fabs(c.gravity.y) ? 0 : 1;
+  progress.emplace(!options.quiet && ::isatty(2), c.run.duration);
+  wall_start = std::chrono::steady_clock::now();
+  end_time = c.run.duration;
+}
+
+template <class E>
+double EdmdRun::current_measure(const E& e) const {
+  if (!c.servo.enabled) return measure;
+  return e.servo().gap * e.servo().width * (dim == 3 ? c.domain.length(2) : 1.0);
+}
+
+template <class E>
+void EdmdRun::record(E& e) {
+  const auto& st = e.state();
+  edmd::check_faults(st);  // NaN or a particle through a wall: stop here
+  auto& k = e.counters();
+  Row r{};
+  r.time = st.time;
+  r.global = observe::sample_global(st.particles, gravity_axis);
+  // The kinetic temperature per degree of freedom uses the number of dimensions.
+  r.global.granular_temperature *= 3.0 / dim;
+  r.collisions = k.collisions;
+  r.wall_collisions = k.wall_collisions;
+  r.events = k.events;
+  r.dissipated = k.dissipated;
+  r.servo = e.servo();
+  const double span = st.time - last_time;
+  // Kinetic part from velocities about the mass-mean one (as the temperature), so a mean flow is
+  // not counted as pressure: sum m v'^2 = d M T.
+  const double kinetic = dim * r.global.mass * r.global.granular_temperature;
+  r.pressure = (kinetic + (span > 0.0 ? (k.virial - last_virial) / span : 0.0)) / (dim * current_measure(e));
+  const bool averaging = st.time > c.output.average_start && k.collisions >= c.output.average_start_collisions;
+  if (averaging && span > 0.0) {
+    average_kinetic += kinetic;
+    average_temperature += r.global.granular_temperature;
+    ++average_rows;
+    average_virial += k.virial - last_virial;
+    average_span += span;
+  }
+  last_time = st.time;
+  last_virial = k.virial;
+  rows.push_back(r);
+}
+
+// The run's whole state, one function for both directions (checkpoint and restart).
+template <class E>
+void EdmdRun::transfer(io::StateArchive& ar, E& e) {
+  ar.tag("edmd run");
+  ar(e, rows, last_time, last_virial, average_kinetic, average_temperature, average_virial, average_span, average_rows);
+  ar(row, shot, checkpoints, *profiles);
+  if (collision_outputs) ar(*collision_outputs);
+  if (snapshots) ar(*snapshots);
+  if (trajectory) ar(*trajectory);
+  ar.tag("end of edmd run");
+}
+
+// trajectory.h5 is copied beside the checkpoint first: a checkpoint never counts more samples
+// than its copy holds.
+template <class E>
+void EdmdRun::checkpoint(E& e) {
+  if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
+  write_run_checkpoint(dir, c, e.state().particles, e.state().time, e.counters().events,
+                       [&](io::StateArchive& ar) { transfer(ar, e); });
+}
+
+template <class E>
+void EdmdRun::start(E& e) {
+  if (c.output.collision_stresses) collision_outputs.emplace(c, e.state());
+  if (restart) {
+    restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
+    if (collision_outputs) collision_outputs->resume(e);
+    if (trajectory) trajectory->resume_stream(checkpoint_folder(options.restart) + "/checkpoint_trajectory.h5");
+    first_events = e.counters().events;
+    first_collisions = e.counters().collisions;
+  } else {
+    record(e);
+    if (snapshots) snapshots->add(e.state().particles, e.state().time);
+  }
+}
+
+template <class E>
+void EdmdRun::event_loop(E& e) {
+  const double checkpoint_interval = c.output.checkpoint_interval;
+  try {
+    while (e.state().time < end_time) {
+      // Between advances every particle is current: a checkpoint here continues exactly.
+      if ((interrupted = pending_interrupt()) != 0) break;
+      const double next_row = std::min(end_time, row * c.output.interval);
+      const double next_shot = snapshots ? grid_time(shot, c.output.snapshot_interval, end_time) : kNeverTime;
+      const double next_state = trajectory ? trajectory->next_time() : kNeverTime;
+      const double t = std::min({next_row, next_shot, profiles->next_time(), next_state});
+      e.advance_to(t);
+      if (profiles->next_time() <= t) {  // every output.profile_interval
+        profiles->sample(e.state(), e.counters().collisions);
+        if (collision_outputs) collision_outputs->sample(e);
+      }
+      if (trajectory && next_state <= t) trajectory->sample(e.state());
+      if (snapshots && next_shot <= t) {
+        snapshots->add(e.state().particles, e.state().time);
+        ++shot;
+      }
+      if (next_row > t) continue;
+      ++row;
+      record(e);
+      progress->update(t);
+      if (t >= end_time) break;
+      if (c.run.collisions > 0 && e.counters().collisions >= c.run.collisions) break;
+      if (checkpoint_interval > 0.0 && t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) {
+        while (t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) ++checkpoints;
+        checkpoint(e);
+      }
+    }
+    // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
+    if (interrupted != 0 || checkpoint_interval > 0.0) checkpoint(e);
+  } catch (const RunError&) {
+    e.synchronize(e.state().time);  // the outputs show every particle at one instant
+    throw;
+  }
+}
+
+int EdmdRun::run() {
   try {
     std::visit(
         [&](auto& e) {
-          if (c.output.collision_stresses) collision_outputs.emplace(c, e.state());
-          if (restart) {
-            restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
-            if (collision_outputs) collision_outputs->resume(e);
-            if (trajectory) trajectory->resume_stream(checkpoint_folder(options.restart) + "/checkpoint_trajectory.h5");
-            first_events = e.counters().events;
-            first_collisions = e.counters().collisions;
-          } else {
-            record(e);
-            if (snapshots) snapshots->add(e.state().particles, e.state().time);
-          }
-          const double checkpoint_interval = c.output.checkpoint_interval;
-          try {
-            while (e.state().time < end_time) {
-              // Between advances every particle is current: a checkpoint here continues exactly.
-              if ((interrupted = pending_interrupt()) != 0) break;
-              const double next_row = std::min(end_time, row * c.output.interval);
-              const double next_shot = snapshots ? grid_time(shot, c.output.snapshot_interval, end_time) : kNeverTime;
-              const double next_state = trajectory ? trajectory->next_time() : kNeverTime;
-              const double t = std::min({next_row, next_shot, profiles.next_time(), next_state});
-              e.advance_to(t);
-              if (profiles.next_time() <= t) {  // every output.profile_interval
-                profiles.sample(e.state(), e.counters().collisions);
-                if (collision_outputs) collision_outputs->sample(e);
-              }
-              if (trajectory && next_state <= t) trajectory->sample(e.state());
-              if (snapshots && next_shot <= t) {
-                snapshots->add(e.state().particles, e.state().time);
-                ++shot;
-              }
-              if (next_row > t) continue;
-              ++row;
-              record(e);
-              progress.update(t);
-              if (t >= end_time) break;
-              if (c.run.collisions > 0 && e.counters().collisions >= c.run.collisions) break;
-              if (checkpoint_interval > 0.0 && t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) {
-                while (t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) ++checkpoints;
-                checkpoint(e);
-              }
-            }
-            // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
-            if (interrupted != 0 || checkpoint_interval > 0.0) checkpoint(e);
-          } catch (const RunError&) {
-            e.synchronize(e.state().time);  // the outputs show every particle at one instant
-            throw;
-          }
+          start(e);
+          event_loop(e);
         },
-        engine);
+        *engine);
   } catch (const RunError& error) {
     errors.push_back(error.what());
     exit_status = 1;
   }
   if (interrupted != 0) {
-    const double t = std::visit([](auto& e) { return e.state().time; }, engine);
+    const double t = std::visit([](auto& e) { return e.state().time; }, *engine);
     errors.push_back(interrupted_message(interrupted, t, "", c, dir));
     exit_status = 128 + interrupted;
   }
-  progress.finish();
-  const double wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-
-  std::visit(
-      [&](auto& e) {
-        const auto& st = e.state();
-        const auto& k = e.counters();
-        const std::size_t n = st.particles.size();
-        double solids = 0.0;
-        for (std::size_t i = 0; i < n; ++i) {
-          const double r = st.particles.radius[i];
-          solids += dim == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r;
-        }
-        io::write_atomically(dir + "/timeseries.csv", [&](std::ostream& out) {
-          out << "# units: time s, energies J, granular_temperature m^2/s^2 (per degree of freedom), pressure "
-              << (dim == 2 ? "N/m" : "Pa") << " (kinetic + collisional virial over the interval), dissipated J\n";
-          const bool servo = c.servo.enabled;
-          if (servo) out << "# servo: gap and width m, wall_speed m/s (> 0 opening), wall_stress as pressure, top_speed m/s\n";
-          out << "time,kinetic_energy,rotational_energy,granular_temperature,collisions,wall_collisions,events,pressure,"
-                 "dissipated"
-              << (servo ? ",gap,width,wall_speed,wall_stress,top_speed" : "") << "\n";
-          for (const auto& r : rows) {
-            out << r.time << ',' << r.global.kinetic_energy << ',' << r.global.rotational_energy << ','
-                << r.global.granular_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.events
-                << ',' << r.pressure << ',' << r.dissipated;
-            if (servo)
-              out << ',' << r.servo.gap << ',' << r.servo.width << ',' << r.servo.wall_speed << ','
-                  << r.servo.measured_stress << ',' << r.servo.top_speed;
-            out << '\n';
-          }
-        });
-        write_final_state(dir + "/final_state.csv", st.particles, st.species);
-
-        const double volume = current_measure(e);
-        const double number_density = n / volume;
-        const double mean_mass = rows.empty() || rows.back().global.mass == 0.0 ? 0.0 : rows.back().global.mass / n;
-        double pressure = 0.0, temperature = 0.0;
-        if (average_rows > 0 && average_span > 0.0) {
-          temperature = average_temperature / average_rows;
-          pressure = (average_kinetic / average_rows + average_virial / average_span) / (dim * volume);
-        }
-        const auto global = observe::sample_global(st.particles, gravity_axis);
-        io::JsonObject summary;
-        summary.string("engine", "edmd");
-        summary.integer("dimension", dim);
-        summary.integer("particles", static_cast<long long>(n));
-        summary.string("case", c.path);
-        summary.string("case_overrides", join_overrides(c.overrides));
-        summary.string("version", kVersion);
-        summary.number("simulated_time", st.time);
-        summary.number("wall_seconds", wall_seconds);
-        summary.integer("events", k.events);
-        summary.integer("collisions", k.collisions);
-        summary.integer("wall_collisions", k.wall_collisions);
-        summary.integer("cell_crossings", k.cell_crossings);
-        summary.integer("stale_events", k.stale);
-        summary.integer("neighbor_list_rebuilds", k.list_rebuilds);
-        summary.integer("rolling_starts", k.rolling_starts);
-        summary.number("events_per_second", wall_seconds > 0.0 ? (k.events - first_events) / wall_seconds : 0.0);
-        summary.number("collisions_per_second",
-                       wall_seconds > 0.0 ? (k.collisions - first_collisions) / wall_seconds : 0.0);
-        if (restart) summary.string("restarted_from", options.restart);
-        summary.number("pressure", pressure);
-        summary.number("packing_fraction", solids / volume);
-        summary.number("compressibility_factor",
-                       temperature > 0.0 && mean_mass > 0.0 ? pressure / (number_density * mean_mass * temperature) : 0.0);
-        summary.number("kinetic_energy", global.kinetic_energy);
-        summary.number("rotational_energy", global.rotational_energy);
-        summary.number("granular_temperature", temperature > 0.0 ? temperature : global.granular_temperature * 3.0 / dim);
-        summary.number("dissipated_energy", k.dissipated);
-        if (c.servo.enabled) {
-          summary.integer("servo_updates", k.servo_updates);
-          summary.number("wall_gap", e.servo().gap);
-          summary.number("cell_width", e.servo().width);
-        }
-        if (collision_outputs) {
-          collision_outputs->finish(e);
-          collision_outputs->write(dir, summary, warnings);
-        }
-        profiles.write(dir, summary, warnings);
-        if (collision_outputs && profiles.samples() > 0) {
-          bool wall_below = false, wall_above = false;
-          for (const auto& w : e.state().walls) wall_below |= w.face == 2, wall_above |= w.face == 3;
-          write_constitutive(dir + "/constitutive.csv", c, dim, profiles.strip_kinematics(),
-                             collision_outputs->strip_stresses(), wall_below, wall_above);
-        }
-        std::vector<double> row_time, row_energy;
-        for (const auto& r : rows) row_time.push_back(r.time), row_energy.push_back(r.global.kinetic_energy);
-        const double began = std::isfinite(profiles.first_sample_time()) ? profiles.first_sample_time() : c.output.average_start;
-        report_steady_state(row_time, row_energy, began, summary, warnings);
-        if (trajectory) trajectory->finish(warnings);
-        exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
-      },
-      engine);
+  progress->finish();
+  wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  std::visit([&](auto& e) { write_outputs(e); }, *engine);
   return exit_status;
 }
+
+template <class E>
+void EdmdRun::write_timeseries(E&) const {
+  io::write_atomically(dir + "/timeseries.csv", [&](std::ostream& out) {
+    out << "# units: time s, energies J, granular_temperature m^2/s^2 (per degree of freedom), pressure "
+        << (dim == 2 ? "N/m" : "Pa") << " (kinetic + collisional virial over the interval), dissipated J\n";
+    const bool servo = c.servo.enabled;
+    if (servo) out << "# servo: gap and width m, wall_speed m/s (> 0 opening), wall_stress as pressure, top_speed m/s\n";
+    out << "time,kinetic_energy,rotational_energy,granular_temperature,collisions,wall_collisions,events,pressure,"
+           "dissipated"
+        << (servo ? ",gap,width,wall_speed,wall_stress,top_speed" : "") << "\n";
+    for (const auto& r : rows) {
+      out << r.time << ',' << r.global.kinetic_energy << ',' << r.global.rotational_energy << ','
+          << r.global.granular_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.events
+          << ',' << r.pressure << ',' << r.dissipated;
+      if (servo)
+        out << ',' << r.servo.gap << ',' << r.servo.width << ',' << r.servo.wall_speed << ','
+            << r.servo.measured_stress << ',' << r.servo.top_speed;
+      out << '\n';
+    }
+  });
+}
+
+template <class E>
+void EdmdRun::write_outputs(E& e) {
+  const auto& st = e.state();
+  const auto& k = e.counters();
+  const std::size_t n = st.particles.size();
+  double solids = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = st.particles.radius[i];
+    solids += dim == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r;
+  }
+  write_timeseries(e);
+  write_final_state(dir + "/final_state.csv", st.particles, st.species);
+
+  const double volume = current_measure(e);
+  const double number_density = n / volume;
+  const double mean_mass = rows.empty() || rows.back().global.mass == 0.0 ? 0.0 : rows.back().global.mass / n;
+  double pressure = 0.0, temperature = 0.0;
+  if (average_rows > 0 && average_span > 0.0) {
+    temperature = average_temperature / average_rows;
+    pressure = (average_kinetic / average_rows + average_virial / average_span) / (dim * volume);
+  }
+  const auto global = observe::sample_global(st.particles, gravity_axis);
+  io::JsonObject summary;
+  summary.string("engine", "edmd");
+  summary.integer("dimension", dim);
+  summary.integer("particles", static_cast<long long>(n));
+  summary.string("case", c.path);
+  summary.string("case_overrides", join_overrides(c.overrides));
+  summary.string("version", kVersion);
+  summary.number("simulated_time", st.time);
+  summary.number("wall_seconds", wall_seconds);
+  summary.integer("events", k.events);
+  summary.integer("collisions", k.collisions);
+  summary.integer("wall_collisions", k.wall_collisions);
+  summary.integer("cell_crossings", k.cell_crossings);
+  summary.integer("stale_events", k.stale);
+  summary.integer("neighbor_list_rebuilds", k.list_rebuilds);
+  summary.integer("rolling_starts", k.rolling_starts);
+  summary.number("events_per_second", wall_seconds > 0.0 ? (k.events - first_events) / wall_seconds : 0.0);
+  summary.number("collisions_per_second",
+                 wall_seconds > 0.0 ? (k.collisions - first_collisions) / wall_seconds : 0.0);
+  if (restart) summary.string("restarted_from", options.restart);
+  summary.number("pressure", pressure);
+  summary.number("packing_fraction", solids / volume);
+  summary.number("compressibility_factor",
+                 temperature > 0.0 && mean_mass > 0.0 ? pressure / (number_density * mean_mass * temperature) : 0.0);
+  summary.number("kinetic_energy", global.kinetic_energy);
+  summary.number("rotational_energy", global.rotational_energy);
+  summary.number("granular_temperature", temperature > 0.0 ? temperature : global.granular_temperature * 3.0 / dim);
+  summary.number("dissipated_energy", k.dissipated);
+  if (c.servo.enabled) {
+    summary.integer("servo_updates", k.servo_updates);
+    summary.number("wall_gap", e.servo().gap);
+    summary.number("cell_width", e.servo().width);
+  }
+  if (collision_outputs) {
+    collision_outputs->finish(e);
+    collision_outputs->write(dir, summary, warnings);
+  }
+  profiles->write(dir, summary, warnings);
+  if (collision_outputs && profiles->samples() > 0) {
+    bool wall_below = false, wall_above = false;
+    for (const auto& w : e.state().walls) wall_below |= w.face == 2, wall_above |= w.face == 3;
+    write_constitutive(dir + "/constitutive.csv", c, dim, profiles->strip_kinematics(),
+                       collision_outputs->strip_stresses(), wall_below, wall_above);
+  }
+  std::vector<double> row_time, row_energy;
+  for (const auto& r : rows) row_time.push_back(r.time), row_energy.push_back(r.global.kinetic_energy);
+  const double began = std::isfinite(profiles->first_sample_time()) ? profiles->first_sample_time() : c.output.average_start;
+  report_steady_state(row_time, row_energy, began, summary, warnings);
+  if (trajectory) trajectory->finish(warnings);
+  exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
+}
+
+}  // namespace
+
+int run_edmd(const CaseConfig& c, const RunOptions& options) { return EdmdRun(c, options).run(); }
 
 }  // namespace grainflow::run
