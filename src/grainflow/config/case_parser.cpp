@@ -87,97 +87,103 @@ void reject_other_laws_keys(TomlReader& r, ContactSchemas schemas, const Contact
     }
 }
 
-CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden,
-                 ContactSchemas schemas) {
-  CaseConfig c;
-  c.path = file;
-  TomlReader top(file, &root, "", &overridden);
+// [engine]
+void read_engine(TomlReader& top, CaseConfig& c) {
+  TomlReader r = top.table("engine");
+  c.engine.kind = r.string("kind", c.engine.kind);
+  c.engine.dimension = static_cast<int>(r.integer("dimension", c.engine.dimension));
+  if (c.engine.kind != "dem" && c.engine.kind != "edmd") r.fail("kind", "must be \"dem\" or \"edmd\"");
+  if (c.engine.dimension != 2 && c.engine.dimension != 3) r.fail("dimension", "must be 2 or 3");
+  r.reject_unknown_keys();
+}
 
-  {
-    TomlReader r = top.table("engine");
-    c.engine.kind = r.string("kind", c.engine.kind);
-    c.engine.dimension = static_cast<int>(r.integer("dimension", c.engine.dimension));
-    if (c.engine.kind != "dem" && c.engine.kind != "edmd") r.fail("kind", "must be \"dem\" or \"edmd\"");
-    if (c.engine.dimension != 2 && c.engine.dimension != 3) r.fail("dimension", "must be 2 or 3");
-    r.reject_unknown_keys();
-  }
-  {
-    TomlReader r = top.table("domain");
-    if (!top.has("domain")) top.fail("domain", "is required");
-    c.domain.lo = r.required_vec3("lo");
-    c.domain.hi = r.required_vec3("hi");
-    for (int axis = 0; axis < 3; ++axis)
-      if (!(c.domain.hi[axis] > c.domain.lo[axis])) r.fail("hi", "must exceed lo on every axis");
-    read_boundaries(r, c.domain);
-    r.reject_unknown_keys();
-  }
-  {
-    TomlReader r = top.table("gravity");
-    c.gravity = r.vec3("vector", c.gravity);
-    r.reject_unknown_keys();
-  }
-  {
-    auto entries = top.array_of_tables("species");
-    if (entries.empty()) top.fail("species", "at least one [[species]] table is required");
-    for (auto& r : entries) {
-      SpeciesConfig s;
-      s.name = r.string("name", "");
-      if (s.name.empty()) r.fail("name", "is required and must not be empty");
-      for (const auto& other : c.species)
-        if (other.name == s.name) r.fail("name", "species '" + s.name + "' is defined twice");
-      s.diameter = r.required_number("diameter");
-      if (!(s.diameter > 0.0)) r.fail("diameter", "must be positive");
-      s.density = r.required_number("density");
-      if (!(s.density > 0.0)) r.fail("density", "must be positive");
-      s.count = r.integer("count", 0);
-      if (s.count < 0) r.fail("count", "must not be negative");
-      s.frozen = r.boolean("frozen", false);
-      s.youngs_modulus = r.number("youngs_modulus", 0.0);
-      if (s.youngs_modulus < 0.0) r.fail("youngs_modulus", "must be positive");
-      s.poisson_ratio = r.number("poisson_ratio", -1.0);
-      if (r.has("poisson_ratio") && !(s.poisson_ratio >= 0.0 && s.poisson_ratio < 0.5))
-        r.fail("poisson_ratio", "must lie in [0, 0.5)");
-      if (s.youngs_modulus > 0.0 && s.poisson_ratio < 0.0) s.poisson_ratio = 0.3;
-      if (r.has("position")) {
-        s.position = r.required_vec3("position");
-        if (s.count != 1) r.fail("position", "places one particle: the species needs count = 1");
-      }
-      r.reject_unknown_keys();
-      c.species.push_back(s);
+// [domain]
+void read_domain(TomlReader& top, CaseConfig& c) {
+  TomlReader r = top.table("domain");
+  if (!top.has("domain")) top.fail("domain", "is required");
+  c.domain.lo = r.required_vec3("lo");
+  c.domain.hi = r.required_vec3("hi");
+  for (int axis = 0; axis < 3; ++axis)
+    if (!(c.domain.hi[axis] > c.domain.lo[axis])) r.fail("hi", "must exceed lo on every axis");
+  read_boundaries(r, c.domain);
+  r.reject_unknown_keys();
+}
+
+// [gravity]
+void read_gravity(TomlReader& top, CaseConfig& c) {
+  TomlReader r = top.table("gravity");
+  c.gravity = r.vec3("vector", c.gravity);
+  r.reject_unknown_keys();
+}
+
+// [[species]]
+void read_species(TomlReader& top, CaseConfig& c) {
+  auto entries = top.array_of_tables("species");
+  if (entries.empty()) top.fail("species", "at least one [[species]] table is required");
+  for (auto& r : entries) {
+    SpeciesConfig s;
+    s.name = r.string("name", "");
+    if (s.name.empty()) r.fail("name", "is required and must not be empty");
+    for (const auto& other : c.species)
+      if (other.name == s.name) r.fail("name", "species '" + s.name + "' is defined twice");
+    s.diameter = r.required_number("diameter");
+    if (!(s.diameter > 0.0)) r.fail("diameter", "must be positive");
+    s.density = r.required_number("density");
+    if (!(s.density > 0.0)) r.fail("density", "must be positive");
+    s.count = r.integer("count", 0);
+    if (s.count < 0) r.fail("count", "must not be negative");
+    s.frozen = r.boolean("frozen", false);
+    s.youngs_modulus = r.number("youngs_modulus", 0.0);
+    if (s.youngs_modulus < 0.0) r.fail("youngs_modulus", "must be positive");
+    s.poisson_ratio = r.number("poisson_ratio", -1.0);
+    if (r.has("poisson_ratio") && !(s.poisson_ratio >= 0.0 && s.poisson_ratio < 0.5))
+      r.fail("poisson_ratio", "must lie in [0, 0.5)");
+    if (s.youngs_modulus > 0.0 && s.poisson_ratio < 0.0) s.poisson_ratio = 0.3;
+    if (r.has("position")) {
+      s.position = r.required_vec3("position");
+      if (s.count != 1) r.fail("position", "places one particle: the species needs count = 1");
     }
-  }
-  {
-    TomlReader r = top.table("particles");
-    auto& p = c.particles;
-    p.init = r.string("init", p.init);
-    if (p.init != "random" && p.init != "lattice" && p.init != "file")
-      r.fail("init", "must be \"random\", \"lattice\" or \"file\"");
-    p.file = r.string("file", "");
-    if (p.init == "file" && p.file.empty()) r.fail("file", "is required when init = \"file\"");
-    if (p.init != "file" && !p.file.empty()) r.fail("file", "is only used with init = \"file\"");
-    p.initial_temperature = r.number("initial_temperature", 0.0);
-    if (p.initial_temperature < 0.0) r.fail("initial_temperature", "must not be negative");
-    const std::int64_t seed = r.integer("seed", 1);
-    if (seed < 0) r.fail("seed", "must not be negative");
-    p.seed = static_cast<std::uint64_t>(seed);
-    if (r.has("region_lo")) p.region_lo = r.vec3("region_lo", {});
-    if (r.has("region_hi")) p.region_hi = r.vec3("region_hi", {});
-    p.expansion_time = r.number("expansion_time", p.expansion_time);
-    if (p.expansion_time < 0.0) r.fail("expansion_time", "must not be negative");
-    p.lattice = r.string("lattice", p.lattice);
-    if (p.lattice != "cubic" && p.lattice != "fcc") r.fail("lattice", "must be \"cubic\" or \"fcc\"");
-    if (p.lattice == "fcc" && (c.engine.kind != "edmd" || c.engine.dimension != 3))
-      r.fail("lattice", "fcc is available for the 3D event-driven engine");
-    p.lattice_jitter = r.number("lattice_jitter", 0.0);
-    if (!(p.lattice_jitter >= 0.0 && p.lattice_jitter < 1.0)) r.fail("lattice_jitter", "must lie in [0, 1)");
-    p.initial_velocity = r.vec3("initial_velocity", {});
-    p.initial_profile = r.string("initial_profile", p.initial_profile);
-    if (p.initial_profile != "uniform" && p.initial_profile != "couette" && p.initial_profile != "campbell_chute")
-      r.fail("initial_profile", "must be \"uniform\", \"couette\" or \"campbell_chute\"");
-    p.lattice_spacing = r.number("lattice_spacing", p.lattice_spacing);
-    if (!(p.lattice_spacing >= 1.0)) r.fail("lattice_spacing", "must be at least 1 (in diameters)");
     r.reject_unknown_keys();
+    c.species.push_back(s);
   }
+}
+
+// [particles]
+void read_particles(TomlReader& top, CaseConfig& c) {
+  TomlReader r = top.table("particles");
+  auto& p = c.particles;
+  p.init = r.string("init", p.init);
+  if (p.init != "random" && p.init != "lattice" && p.init != "file")
+    r.fail("init", "must be \"random\", \"lattice\" or \"file\"");
+  p.file = r.string("file", "");
+  if (p.init == "file" && p.file.empty()) r.fail("file", "is required when init = \"file\"");
+  if (p.init != "file" && !p.file.empty()) r.fail("file", "is only used with init = \"file\"");
+  p.initial_temperature = r.number("initial_temperature", 0.0);
+  if (p.initial_temperature < 0.0) r.fail("initial_temperature", "must not be negative");
+  const std::int64_t seed = r.integer("seed", 1);
+  if (seed < 0) r.fail("seed", "must not be negative");
+  p.seed = static_cast<std::uint64_t>(seed);
+  if (r.has("region_lo")) p.region_lo = r.vec3("region_lo", {});
+  if (r.has("region_hi")) p.region_hi = r.vec3("region_hi", {});
+  p.expansion_time = r.number("expansion_time", p.expansion_time);
+  if (p.expansion_time < 0.0) r.fail("expansion_time", "must not be negative");
+  p.lattice = r.string("lattice", p.lattice);
+  if (p.lattice != "cubic" && p.lattice != "fcc") r.fail("lattice", "must be \"cubic\" or \"fcc\"");
+  if (p.lattice == "fcc" && (c.engine.kind != "edmd" || c.engine.dimension != 3))
+    r.fail("lattice", "fcc is available for the 3D event-driven engine");
+  p.lattice_jitter = r.number("lattice_jitter", 0.0);
+  if (!(p.lattice_jitter >= 0.0 && p.lattice_jitter < 1.0)) r.fail("lattice_jitter", "must lie in [0, 1)");
+  p.initial_velocity = r.vec3("initial_velocity", {});
+  p.initial_profile = r.string("initial_profile", p.initial_profile);
+  if (p.initial_profile != "uniform" && p.initial_profile != "couette" && p.initial_profile != "campbell_chute")
+    r.fail("initial_profile", "must be \"uniform\", \"couette\" or \"campbell_chute\"");
+  p.lattice_spacing = r.number("lattice_spacing", p.lattice_spacing);
+  if (!(p.lattice_spacing >= 1.0)) r.fail("lattice_spacing", "must be at least 1 (in diameters)");
+  r.reject_unknown_keys();
+}
+
+// [contact] (DEM): the law by its schema
+void read_contact(TomlReader& top, CaseConfig& c, ContactSchemas schemas) {
   if (c.engine.kind == "dem") {
     if (top.has("collision")) top.fail("collision", "is for engine.kind = \"edmd\"; the DEM engine takes [contact]");
     TomlReader r = top.table("contact");
@@ -191,6 +197,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     law->read(r, k.parameters);
     r.reject_unknown_keys();
   }
+}
+
+// [collision] (event-driven)
+void read_collision(TomlReader& top, CaseConfig& c) {
   if (c.engine.kind == "edmd") {
     if (top.has("contact")) top.fail("contact", "is for engine.kind = \"dem\"; the event-driven engine takes [collision]");
     TomlReader r = top.table("collision");
@@ -226,46 +236,52 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (!(k.inertia_factor > 0.0 && k.inertia_factor <= 1.0)) r.fail("inertia_factor", "must lie in (0, 1]");
     r.reject_unknown_keys();
   }
-  {
-    TomlReader walls = top.table("walls");
-    for (int f = 0; f < 6; ++f) {
-      if (!walls.has(kFaceNames[f])) continue;
-      TomlReader r = walls.table(kFaceNames[f]);
-      WallConfig& w = c.walls[f];
-      const bool edmd = c.engine.kind == "edmd";
-      w.condition = r.string("condition", "smooth");
-      if (r.has("condition") && !edmd) r.fail("condition", "wall conditions are for the event-driven engine");
-      if (w.condition != "smooth" && w.condition != "rough" && w.condition != "no_slip")
-        r.fail("condition", "must be \"smooth\", \"rough\" or \"no_slip\"");
-      if (edmd) {
-        // A hard wall may be perfectly plastic (e = 0).
-        w.restitution = r.number("restitution", -1.0);
-        if (r.has("restitution") && !(w.restitution >= 0.0 && w.restitution <= 1.0))
-          r.fail("restitution", "must lie in [0, 1]");
-      } else {
-        const ContactSchema& law = *find_schema(schemas, c.contact.model);
-        reject_other_laws_keys(r, schemas, law, &ContactSchema::wall_keys);
-        law.read_wall(r, w.contact);
-      }
-      w.friction = r.number("friction", -1.0);
-      if (r.has("friction") && w.friction < 0.0) r.fail("friction", "must not be negative");
-      w.velocity = r.vec3("velocity", {});
-      w.bump_diameter = r.number("bump_diameter", 0.0);
-      if (r.has("bump_diameter") && !(w.bump_diameter > 0.0)) r.fail("bump_diameter", "must be positive");
-      w.lattice = r.string("lattice", w.lattice);
-      if (w.lattice != "square" && w.lattice != "triangular") r.fail("lattice", "must be \"square\" or \"triangular\"");
-      w.spacing = r.number("spacing", 0.0);
-      if (r.has("spacing") && !(w.spacing > 0.0)) r.fail("spacing", "must be positive");
-      const FaceKind kind = c.domain.faces[f];
-      if (kind == FaceKind::periodic || kind == FaceKind::open)
-        walls.fail(kFaceNames[f], "face is not a wall (boundary is periodic or open)");
-      if (kind != FaceKind::bumpy)
-        for (const char* key : {"bump_diameter", "lattice", "spacing"})
-          if (r.has(key)) r.fail(key, "only applies to a bumpy face");
-      r.reject_unknown_keys();
+}
+
+// [walls]
+void read_walls(TomlReader& top, CaseConfig& c, ContactSchemas schemas) {
+  TomlReader walls = top.table("walls");
+  for (int f = 0; f < 6; ++f) {
+    if (!walls.has(kFaceNames[f])) continue;
+    TomlReader r = walls.table(kFaceNames[f]);
+    WallConfig& w = c.walls[f];
+    const bool edmd = c.engine.kind == "edmd";
+    w.condition = r.string("condition", "smooth");
+    if (r.has("condition") && !edmd) r.fail("condition", "wall conditions are for the event-driven engine");
+    if (w.condition != "smooth" && w.condition != "rough" && w.condition != "no_slip")
+      r.fail("condition", "must be \"smooth\", \"rough\" or \"no_slip\"");
+    if (edmd) {
+      // A hard wall may be perfectly plastic (e = 0).
+      w.restitution = r.number("restitution", -1.0);
+      if (r.has("restitution") && !(w.restitution >= 0.0 && w.restitution <= 1.0))
+        r.fail("restitution", "must lie in [0, 1]");
+    } else {
+      const ContactSchema& law = *find_schema(schemas, c.contact.model);
+      reject_other_laws_keys(r, schemas, law, &ContactSchema::wall_keys);
+      law.read_wall(r, w.contact);
     }
-    walls.reject_unknown_keys();
+    w.friction = r.number("friction", -1.0);
+    if (r.has("friction") && w.friction < 0.0) r.fail("friction", "must not be negative");
+    w.velocity = r.vec3("velocity", {});
+    w.bump_diameter = r.number("bump_diameter", 0.0);
+    if (r.has("bump_diameter") && !(w.bump_diameter > 0.0)) r.fail("bump_diameter", "must be positive");
+    w.lattice = r.string("lattice", w.lattice);
+    if (w.lattice != "square" && w.lattice != "triangular") r.fail("lattice", "must be \"square\" or \"triangular\"");
+    w.spacing = r.number("spacing", 0.0);
+    if (r.has("spacing") && !(w.spacing > 0.0)) r.fail("spacing", "must be positive");
+    const FaceKind kind = c.domain.faces[f];
+    if (kind == FaceKind::periodic || kind == FaceKind::open)
+      walls.fail(kFaceNames[f], "face is not a wall (boundary is periodic or open)");
+    if (kind != FaceKind::bumpy)
+      for (const char* key : {"bump_diameter", "lattice", "spacing"})
+        if (r.has(key)) r.fail(key, "only applies to a bumpy face");
+    r.reject_unknown_keys();
   }
+  walls.reject_unknown_keys();
+}
+
+// [servo]
+void read_servo(TomlReader& top, CaseConfig& c) {
   if (top.has("servo")) {
     TomlReader r = top.table("servo");
     auto& v = c.servo;
@@ -284,6 +300,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (!c.domain.periodic(0)) r.fail("scale_width", "the Couette cell needs a periodic x axis (the flow direction)");
     r.reject_unknown_keys();
   }
+}
+
+// [lees_edwards]
+void read_lees_edwards(TomlReader& top, CaseConfig& c) {
   if (top.has("lees_edwards")) {
     TomlReader r = top.table("lees_edwards");
     if (c.engine.kind != "edmd") top.fail("lees_edwards", "Lees–Edwards boundaries are an event-driven (edmd) feature");
@@ -293,8 +313,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
       r.fail("shear_rate", "Lees–Edwards boundaries need periodic x (flow) and y (gradient) axes");
     r.reject_unknown_keys();
   }
-  if (top.has("drive") && c.engine.kind == "edmd")
-    top.fail("drive", "vibrating drives are for the DEM engine; event-driven walls move at constant velocity");
+}
+
+// [drive]
+void read_drive(TomlReader& top, CaseConfig& c) {
   if (top.has("drive")) {
     TomlReader r = top.table("drive");
     auto& d = c.drive;
@@ -333,58 +355,66 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (kind == FaceKind::open) r.fail("face", std::string("cannot drive an open face (") + kFaceNames[d.face] + ")");
     r.reject_unknown_keys();
   }
-  {
-    TomlReader r = top.table("run");
-    auto& run = c.run;
-    run.collisions = r.integer("collisions", 0);
-    if (run.collisions < 0) r.fail("collisions", "must not be negative");
-    if (run.collisions > 0 && c.engine.kind != "edmd") r.fail("collisions", "only the event-driven engine counts collisions");
-    run.duration = run.collisions > 0 ? r.number("duration", 1e300) : r.required_number("duration");
-    if (!(run.duration > 0.0)) r.fail("duration", "must be positive");
-    if (c.engine.kind == "edmd")
-      for (const char* key : {"time_step", "collision_steps", "skin", "halt_overlap", "sort_every"})
-        if (r.has(key)) r.fail(key, "is a soft-sphere (dem) setting; the event-driven engine has no time step");
-    run.time_step = r.number("time_step", 0.0);
-    if (run.time_step < 0.0) r.fail("time_step", "must not be negative (0 = from eq. 2-5-4)");
-    run.collision_steps = static_cast<int>(r.integer("collision_steps", run.collision_steps));
-    if (run.collision_steps < 1) r.fail("collision_steps", "must be at least 1");
-    run.skin = r.number("skin", -1.0);
-    if (r.has("skin") && !(run.skin > 0.0)) r.fail("skin", "must be positive");
-    run.halt_overlap = r.number("halt_overlap", 0.0);
-    if (run.halt_overlap < 0.0) r.fail("halt_overlap", "must not be negative");
-    run.sort_every = static_cast<int>(r.integer("sort_every", run.sort_every));
-    if (run.sort_every < 0) r.fail("sort_every", "must not be negative");
-    r.reject_unknown_keys();
-  }
-  {
-    TomlReader r = top.table("output");
-    auto& o = c.output;
-    o.interval = r.number("interval", o.interval);
-    if (!(o.interval > 0.0)) r.fail("interval", "must be positive");
-    o.snapshot_interval = r.number("snapshot_interval", 0.0);
-    if (o.snapshot_interval < 0.0) r.fail("snapshot_interval", "must not be negative");
-    o.checkpoint_interval = r.number("checkpoint_interval", 0.0);
-    if (o.checkpoint_interval < 0.0) r.fail("checkpoint_interval", "must not be negative");
-    o.profile_interval = r.number("profile_interval", 0.0);
-    if (o.profile_interval < 0.0) r.fail("profile_interval", "must not be negative");
-    o.average_start = r.number("average_start", 0.0);
-    if (o.average_start < 0.0) r.fail("average_start", "must not be negative");
-    o.average_start_collisions = r.integer("average_start_collisions", 0);
-    if (o.average_start_collisions < 0) r.fail("average_start_collisions", "must not be negative");
-    if (o.average_start_collisions > 0 && c.engine.kind != "edmd")
-      r.fail("average_start_collisions", "only the event-driven engine counts collisions (use average_start)");
-    o.collision_stresses = r.boolean("collision_stresses", true);
-    if (r.has("collision_stresses") && c.engine.kind != "edmd")
-      r.fail("collision_stresses", "only the event-driven engine measures stresses from its collisions");
-    o.zone_thickness = r.number("zone_thickness", 0.0);
-    if (o.zone_thickness < 0.0) r.fail("zone_thickness", "must not be negative");
-    o.bed_gap_fraction = r.number("bed_gap_fraction", o.bed_gap_fraction);
-    if (!(o.bed_gap_fraction > 0.0 && o.bed_gap_fraction < 0.74)) r.fail("bed_gap_fraction", "must lie in (0, 0.74)");
-    o.bed_surface_fraction = r.number("bed_surface_fraction", o.bed_surface_fraction);
-    if (!(o.bed_surface_fraction > 0.0 && o.bed_surface_fraction < 0.74))
-      r.fail("bed_surface_fraction", "must lie in (0, 0.74)");
-    r.reject_unknown_keys();
-  }
+}
+
+// [run]
+void read_run(TomlReader& top, CaseConfig& c) {
+  TomlReader r = top.table("run");
+  auto& run = c.run;
+  run.collisions = r.integer("collisions", 0);
+  if (run.collisions < 0) r.fail("collisions", "must not be negative");
+  if (run.collisions > 0 && c.engine.kind != "edmd") r.fail("collisions", "only the event-driven engine counts collisions");
+  run.duration = run.collisions > 0 ? r.number("duration", 1e300) : r.required_number("duration");
+  if (!(run.duration > 0.0)) r.fail("duration", "must be positive");
+  if (c.engine.kind == "edmd")
+    for (const char* key : {"time_step", "collision_steps", "skin", "halt_overlap", "sort_every"})
+      if (r.has(key)) r.fail(key, "is a soft-sphere (dem) setting; the event-driven engine has no time step");
+  run.time_step = r.number("time_step", 0.0);
+  if (run.time_step < 0.0) r.fail("time_step", "must not be negative (0 = from eq. 2-5-4)");
+  run.collision_steps = static_cast<int>(r.integer("collision_steps", run.collision_steps));
+  if (run.collision_steps < 1) r.fail("collision_steps", "must be at least 1");
+  run.skin = r.number("skin", -1.0);
+  if (r.has("skin") && !(run.skin > 0.0)) r.fail("skin", "must be positive");
+  run.halt_overlap = r.number("halt_overlap", 0.0);
+  if (run.halt_overlap < 0.0) r.fail("halt_overlap", "must not be negative");
+  run.sort_every = static_cast<int>(r.integer("sort_every", run.sort_every));
+  if (run.sort_every < 0) r.fail("sort_every", "must not be negative");
+  r.reject_unknown_keys();
+}
+
+// [output]
+void read_output(TomlReader& top, CaseConfig& c) {
+  TomlReader r = top.table("output");
+  auto& o = c.output;
+  o.interval = r.number("interval", o.interval);
+  if (!(o.interval > 0.0)) r.fail("interval", "must be positive");
+  o.snapshot_interval = r.number("snapshot_interval", 0.0);
+  if (o.snapshot_interval < 0.0) r.fail("snapshot_interval", "must not be negative");
+  o.checkpoint_interval = r.number("checkpoint_interval", 0.0);
+  if (o.checkpoint_interval < 0.0) r.fail("checkpoint_interval", "must not be negative");
+  o.profile_interval = r.number("profile_interval", 0.0);
+  if (o.profile_interval < 0.0) r.fail("profile_interval", "must not be negative");
+  o.average_start = r.number("average_start", 0.0);
+  if (o.average_start < 0.0) r.fail("average_start", "must not be negative");
+  o.average_start_collisions = r.integer("average_start_collisions", 0);
+  if (o.average_start_collisions < 0) r.fail("average_start_collisions", "must not be negative");
+  if (o.average_start_collisions > 0 && c.engine.kind != "edmd")
+    r.fail("average_start_collisions", "only the event-driven engine counts collisions (use average_start)");
+  o.collision_stresses = r.boolean("collision_stresses", true);
+  if (r.has("collision_stresses") && c.engine.kind != "edmd")
+    r.fail("collision_stresses", "only the event-driven engine measures stresses from its collisions");
+  o.zone_thickness = r.number("zone_thickness", 0.0);
+  if (o.zone_thickness < 0.0) r.fail("zone_thickness", "must not be negative");
+  o.bed_gap_fraction = r.number("bed_gap_fraction", o.bed_gap_fraction);
+  if (!(o.bed_gap_fraction > 0.0 && o.bed_gap_fraction < 0.74)) r.fail("bed_gap_fraction", "must lie in (0, 0.74)");
+  o.bed_surface_fraction = r.number("bed_surface_fraction", o.bed_surface_fraction);
+  if (!(o.bed_surface_fraction > 0.0 && o.bed_surface_fraction < 0.74))
+    r.fail("bed_surface_fraction", "must lie in (0, 0.74)");
+  r.reject_unknown_keys();
+}
+
+// [trajectory]
+void read_trajectory(TomlReader& top, CaseConfig& c) {
   if (top.has("trajectory")) {
     TomlReader r = top.table("trajectory");
     auto& t = c.trajectory;
@@ -414,6 +444,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     }
     r.reject_unknown_keys();
   }
+}
+
+// [zone_series]
+void read_zone_series(TomlReader& top, CaseConfig& c) {
   if (top.has("zone_series")) {
     TomlReader r = top.table("zone_series");
     auto& z = c.zone_series;
@@ -424,6 +458,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (z.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
     r.reject_unknown_keys();
   }
+}
+
+// [field]
+void read_field(TomlReader& top, CaseConfig& c) {
   if (top.has("field")) {
     TomlReader r = top.table("field");
     auto& f = c.field;
@@ -443,6 +481,10 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     f.phase_bins = static_cast<int>(bins);
     r.reject_unknown_keys();
   }
+}
+
+// [tracers]
+void read_tracers(TomlReader& top, CaseConfig& c) {
   if (top.has("tracers")) {
     TomlReader r = top.table("tracers");
     auto& t = c.tracers;
@@ -471,6 +513,32 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
     if (t.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
     r.reject_unknown_keys();
   }
+}
+
+CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden,
+                 ContactSchemas schemas) {
+  CaseConfig c;
+  c.path = file;
+  TomlReader top(file, &root, "", &overridden);
+  read_engine(top, c);
+  read_domain(top, c);
+  read_gravity(top, c);
+  read_species(top, c);
+  read_particles(top, c);
+  read_contact(top, c, schemas);
+  read_collision(top, c);
+  read_walls(top, c, schemas);
+  read_servo(top, c);
+  read_lees_edwards(top, c);
+  if (top.has("drive") && c.engine.kind == "edmd")
+    top.fail("drive", "vibrating drives are for the DEM engine; event-driven walls move at constant velocity");
+  read_drive(top, c);
+  read_run(top, c);
+  read_output(top, c);
+  read_trajectory(top, c);
+  read_zone_series(top, c);
+  read_field(top, c);
+  read_tracers(top, c);
   top.reject_unknown_keys();
   return c;
 }
