@@ -1008,18 +1008,19 @@ class EdmdEngine {
     ParticleStore& p = s_.particles;
     const Vec3 dr = displacement(i, j);
     const Vec3 normal = dr * (1.0 / norm(dr));
-    const double before = kinetic_energy(i) + kinetic_energy(j);
     const bool recent = s_.time - last_collision_[i] < s_.contact_duration || s_.time - last_collision_[j] < s_.contact_duration;
-    // Across a Lees–Edwards boundary i meets j's sliding image: resolve in that frame.
+    // Across a Lees–Edwards boundary i meets j's sliding image: resolve in that frame, and measure
+    // the energy lost there (in the lab frame the boundary's work would count as well).
     const Vec3 frame = image_velocity(i, j);
     flight_[j].v += frame;
+    const double before = kinetic_energy(i) + kinetic_energy(j);
     const Vec3 impulse = collide_pair({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
                                       {flight_[j].v, p.angular_velocity[j], p.radius[j], p.inv_mass[j], p.inv_inertia[j]},
                                       normal, recent ? elastic_ : s_.restitution, recent ? -1.0 : s_.tangential_restitution);
+    const double lost = before - kinetic_energy(i) - kinetic_energy(j);
     flight_[j].v -= frame;
     last_collision_[i] = last_collision_[j] = s_.time;
     counters_.virial += dot(dr, impulse);
-    const double lost = before - kinetic_energy(i) - kinetic_energy(j);
     counters_.dissipated += lost;
     ++flight_[i].count;
     ++flight_[j].count;
@@ -1054,14 +1055,16 @@ class EdmdEngine {
     ParticleStore& p = s_.particles;
     Vec3 normal;
     normal[wall.axis] = wall.inward;
-    const double before = kinetic_energy(i);
+    // The energy lost is measured in the wall's frame: in the lab frame a moving wall's work on the
+    // particle would count as well (and a sheared cell would seem to gain energy in collisions).
+    const double before = kinetic_energy(i, wall.velocity);
     const bool recent = s_.time - last_collision_[i] < s_.contact_duration;
     const WallCondition condition = recent ? WallCondition::smooth : wall.condition;
     const Vec3 impulse = collide_wall({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
                                       normal, wall.velocity, recent ? elastic_ : wall.restitution, condition);
     wall_normal_impulse_[w] += dot(impulse, normal);
     last_collision_[i] = s_.time;
-    const double lost = before - kinetic_energy(i);
+    const double lost = before - kinetic_energy(i, wall.velocity);
     counters_.dissipated += lost;
     ++flight_[i].count;
     ++counters_.wall_collisions;
@@ -1140,9 +1143,10 @@ class EdmdEngine {
     link(static_cast<int>(i));
   }
 
-  double kinetic_energy(std::uint32_t i) const {
+  // Translational (relative to `frame`) plus rotational kinetic energy of particle i.
+  double kinetic_energy(std::uint32_t i, const Vec3& frame = {}) const {
     const ParticleStore& p = s_.particles;
-    return 0.5 * p.mass[i] * norm2(flight_[i].v) + 0.5 * norm2(p.angular_velocity[i]) / p.inv_inertia[i];
+    return 0.5 * p.mass[i] * norm2(flight_[i].v - frame) + 0.5 * norm2(p.angular_velocity[i]) / p.inv_inertia[i];
   }
 
   EdmdState s_;

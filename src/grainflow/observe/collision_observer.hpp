@@ -33,7 +33,7 @@ struct WallCollision {
   Vec3 contact;                    // m, the contact point on the wall plane
   Vec3 impulse;                    // kg m/s, on the particle (the wall receives its opposite)
   Vec3 slip_velocity_before;       // m/s, tangential velocity of the particle's contact point relative to the wall
-  double dissipated = 0.0;         // J lost (a moving wall's work makes it negative)
+  double dissipated = 0.0;         // J lost, in the wall's frame (>= 0; the moving wall's work J . V is apart)
 };
 
 class CollisionObserver {
