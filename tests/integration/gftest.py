@@ -4,6 +4,7 @@ folder. Each script imports this module by putting its own folder on sys.path, s
 `/usr/bin/python3 tests/integration/test_X.py PATH_TO_grainflow` works from the repo root.
 """
 import csv
+import json
 import math
 import os
 import re
@@ -130,3 +131,43 @@ def elastic_gas_case(dim, side, phi, duration, output, seed=21):
     text = ELASTIC_GAS.format(dim=dim, L=length, Lz=length if dim == 3 else 1.0, density=1.0 / volume, N=side ** dim,
                               spacing=spacing * (1 - 1e-9), seed=seed, duration=duration, output=output)
     return text, length
+
+
+GOLDENS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "regression", "seed_goldens.json")
+
+
+def golden_entry(case):
+    """The golden scalars of a bundled seed case (tests/regression/seed_goldens.json): the run's
+    arguments ("args") and the values with their tolerances ("values"; how they were set is the
+    file's "why"), or None after a failed check."""
+    with open(GOLDENS) as f:
+        entry = json.load(f)["cases"].get(case)
+    check(entry is not None, f"{case}: no golden values in {GOLDENS} (make_seed_goldens.py writes them)")
+    return entry
+
+
+def check_goldens(case, entry, summary):
+    """Compares a run's summary, made with entry["args"], with the golden values; returns how many."""
+    for key, golden in entry["values"].items():
+        value, expected, tolerance = summary.get(key), golden["value"], golden["relative_tolerance"]
+        if not check(value is not None, f"{case}: summary.json has no {key}"):
+            continue
+        check(abs(value - expected) <= tolerance * abs(expected),
+              f"{case}: {key} = {value!r}, golden {expected!r} (relative tolerance {tolerance:.1e}, run with "
+              f"{' '.join(entry['args'])}); a change of the physics? see tests/regression/make_seed_goldens.py")
+    return len(entry["values"])
+
+
+def golden_run(exe, case, out, short_args, summary):
+    """Checks the case's golden values: against `summary` when the goldens were made with the test's
+    own `short_args`, else after a run of the goldens' shorter arguments into `out`_golden."""
+    entry = golden_entry(case)
+    if entry is None:
+        return 0
+    if entry["args"] != list(short_args):
+        status, _, err = run(exe, "run", case, "-o", out + "_golden", "--quiet", *entry["args"])
+        if not check(status == 0, f"golden run of {case}: exit {status}: {err.strip()}"):
+            return 0
+        with open(os.path.join(out + "_golden", "summary.json")) as f:
+            summary = json.load(f)
+    return check_goldens(case, entry, summary)

@@ -388,7 +388,17 @@ def check_pngs(folder, names, context):
             continue
         with open(path, "rb") as f:
             head = f.read(8)
-        check(head == PNG_SIGNATURE and os.path.getsize(path) > 1000, f"{context}: {name} is not a valid PNG")
+        if not check(head == PNG_SIGNATURE, f"{context}: {name} is not a PNG"):
+            continue
+        # A figure, not a blank or a stub: a readable size, and ink (axes, labels, curves) covering
+        # between 1 % and 90 % of a white page.
+        from PIL import Image
+        with Image.open(path) as image:
+            width, height = image.size
+            gray = np.asarray(image.convert("L"), dtype=float)
+        ink = float((gray < 250).mean())
+        check(width >= 400 and height >= 250, f"{context}: {name} is only {width} x {height} pixels")
+        check(0.01 < ink < 0.9, f"{context}: {name} has ink on {100 * ink:.2f} % of its pixels (blank or a solid block?)")
     leftovers = [n for n in os.listdir(folder) if ".tmp-" in n]
     check(not leftovers, f"{context}: temporary files left behind: {leftovers}")
 
