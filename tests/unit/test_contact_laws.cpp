@@ -225,7 +225,9 @@ TYPED_TEST(ContactLawContract, TangentialForceWithinCoulombBound) {
       EXPECT_LE(norm(f.tangential), limit * (1.0 + 1e-12) + 1e-300);
       slid = slid || (limit > 0.0 && norm(f.tangential) > 0.999 * limit);
     }
-    if (slip_scale == 100.0) EXPECT_TRUE(slid) << "large slips must reach the Coulomb limit";
+    if (slip_scale == 100.0) {
+      EXPECT_TRUE(slid) << "large slips must reach the Coulomb limit";
+    }
   }
 }
 

@@ -25,34 +25,15 @@
 #include "grainflow/core/cell_counts.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/observe/collision_observer.hpp"
+#include "grainflow/edmd/couette_servo.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
+#include "grainflow/edmd/event_counters.hpp"
 #include "grainflow/edmd/fault_checks.hpp"
 #include "grainflow/edmd/event_queue.hpp"
 #include "grainflow/edmd/free_flight.hpp"
+#include "grainflow/edmd/stall_detector.hpp"
 
 namespace grainflow::edmd {
-
-struct EventCounters {
-  long long events = 0;          // every processed event, stale ones included
-  long long collisions = 0;      // particle-particle
-  long long wall_collisions = 0;
-  long long cell_crossings = 0;
-  long long stale = 0;           // events found invalid and re-predicted
-  long long list_rebuilds = 0;   // neighbour-list rebuilds (the list path has these instead of cell crossings)
-  long long rolling_starts = 0;  // wall rebounds too slow to bounce: the particle rolls
-  double virial = 0.0;           // sum over collisions of r_ij . J_i (kg m^2/s), for the pressure
-  double dissipated = 0.0;       // J lost in collisions
-  long long servo_updates = 0;   // pressure-servo wall speed changes
-};
-
-// The pressure-controlled Couette cell as last measured (section 2.14.3).
-struct ServoState {
-  double gap = 0.0;              // m, distance between the wall planes
-  double width = 0.0;            // m, periodic control-volume width
-  double wall_speed = 0.0;       // m/s, opening speed of each wall (> 0 apart)
-  double measured_stress = 0.0;  // N/m (2D) or Pa (3D), mean normal stress on the walls over the last period
-  double top_speed = 0.0;        // m/s, tangential speed of the top wall
-};
 
 // Relative speeds below this fraction of the particles' speeds are round-off (see approaching()).
 inline constexpr double kVelocityResolution = 1e-10;
@@ -77,11 +58,8 @@ class EdmdEngine {
     const bool one_size = std::all_of(p.radius.begin(), p.radius.end(), [&](double r) { return r == p.radius.front(); });
     uniform_radius_ = one_size && n > 0 ? p.radius.front() : 0.0;
     load_flights();
-    width_ref_ = s_.box.length(0);
-    window_start_ = s_.time;
-    width_since_ = s_.time;
-    wall_normal_impulse_.assign(s_.walls.size(), 0.0);
-    if (s_.servo.enabled) start_servo();
+    stall_.start(s_.time);
+    servo_ = CouetteServo(s_);
     shear_velocity_ = s_.lees_edwards_rate * s_.box.length(1);
     lists_ = neighbor_lists && lists_apply();
     build_grid();
@@ -102,9 +80,8 @@ class EdmdEngine {
   void serialize(Archive& ar) {
     ar.tag(Dim == 3 ? "edmd engine 3d" : "edmd engine 2d");
     ar(s_.particles, s_.box, s_.time, s_.walls);
-    ar(cells_, cell_size_, head_, prev_, cell_, last_collision_, window_events_, window_start_);
-    ar(width_ref_, width_rate_, width_since_, wall_normal_impulse_, servo_since_, servo_gap_, servo_collisions_,
-       servo_state_);
+    ar(cells_, cell_size_, head_, prev_, cell_, last_collision_, stall_);
+    ar(servo_);
     ar(flight_, center_, inside_, list_, list_cap_, slot_x_, slot_id_, slot_count_, slot_of_, slot_cap_);
     ar(rolling_, rolling_count_, event_, event_time_, queue_, counters_);
     kept_.resize(list_cap_);  // scratch, sized with the lists and slots
@@ -113,7 +90,7 @@ class EdmdEngine {
   // Whether particles search their neighbour lists (straight flights: no gravity, Lees–Edwards or
   // servo) rather than the 27 cells around them.
   bool neighbor_lists() const { return lists_; }
-  const ServoState& servo() const { return servo_state_; }
+  const ServoState& servo() const { return servo_.state(); }
 
   // Reports every later collision to `observer` (nullptr: none). The engine does not own it.
   void set_observer(observe::CollisionObserver* observer) { observer_ = observer; }
@@ -147,22 +124,15 @@ class EdmdEngine {
       check_progress(i);
       update_width();
       process(i);
-      if (s_.servo.enabled && servo_due()) servo_update();
+      if (s_.servo.enabled && servo_.due(s_, counters_.collisions)) servo_update();
     }
     synchronize(t_end);
   }
 
-  // A run stalls when events keep coming at one instant, or crawls when time moves by round-off
-  // only (Zeno bounces, inelastic collapse). Each window of 100 N + 1000 events (some 50 collisions
-  // per particle) must move time forward by more than 1e-9 of its value; a healthy run would need
-  // ~10^10 collisions per particle before that bound could bite.
+  // The stall detector (stall_detector.hpp) sees every event.
   void check_progress(std::uint32_t i) {
-    const long long window = 100 * static_cast<long long>(s_.particles.size()) + 1000;
-    if (++window_events_ < window) return;
-    const double moved = s_.time - window_start_;
-    if (!(moved > 1e-9 * std::fabs(s_.time))) report_stall(i, window, moved);
-    window_events_ = 0;
-    window_start_ = s_.time;
+    const std::size_t n = s_.particles.size();
+    if (stall_.stalled(n, s_.time)) report_stall(i, StallDetector::window(n), stall_.moved());
   }
 
   // The stalled clock's message (fault_checks.hpp): the last event's particles and those that
@@ -177,7 +147,7 @@ class EdmdEngine {
     if (event_[i].kind == Kind::pair) stall.j = p.id[event_[i].partner];
     if (event_[i].kind == Kind::wall) stall.wall_face = s_.walls[event_[i].detail].face;
     for (std::size_t k = 0; k < p.size(); ++k)
-      if (last_collision_[k] >= window_start_) {
+      if (last_collision_[k] >= stall_.window_start()) {
         ++stall.collider_count;
         if (stall.colliders.size() < 8) stall.colliders.push_back(p.id[k]);
       }
@@ -198,10 +168,7 @@ class EdmdEngine {
       p.position[i] = flight_[i].x;
       p.velocity[i] = flight_[i].v;
     }
-    if (s_.servo.enabled) {
-      servo_state_.gap = gap_at(t);
-      servo_state_.width = s_.box.length(0);
-    }
+    if (s_.servo.enabled) servo_.observe(s_, t);
   }
 
   // Re-schedules every particle (after walls changed their motion).
@@ -286,11 +253,10 @@ class EdmdEngine {
     return c[0] + cells_[0] * (c[1] + cells_[1] * c[2]);
   }
 
-  // The periodic width of a Couette cell whose width follows its gap: L(t) = L_ref + L' (t - t_ref).
-  double width_at(double t) const { return width_ref_ + width_rate_ * (t - width_since_); }
+  // The periodic width of a Couette cell whose width follows its gap (CouetteServo::width_at).
   void update_width() {
-    if (width_rate_ == 0.0) return;
-    s_.box.hi.x = s_.box.lo.x + width_at(s_.time);
+    if (servo_.width_rate() == 0.0) return;
+    s_.box.hi.x = s_.box.lo.x + servo_.width_at(s_.time);
     cell_size_[0] = s_.box.length(0) / cells_[0];
   }
   std::array<int, 3> cell_coordinates(int cell) const {
@@ -433,7 +399,7 @@ class EdmdEngine {
     for (int k = 0; k < visit_count; ++k) {
       const Visit& v = visits[k];
       const Vec3 shift{v.sx * s_.box.length(0), v.sy * s_.box.length(1), v.sz * s_.box.length(2)};
-      const Vec3 shift_velocity{v.sx * width_rate_, 0.0, 0.0};  // images move with the width rate
+      const Vec3 shift_velocity{v.sx * servo_.width_rate(), 0.0, 0.0};  // images move with the width rate
       consider(v.cell, shift, shift_velocity, false);
     }
     for (std::size_t w = 0; w < s_.walls.size(); ++w) {
@@ -453,8 +419,8 @@ class EdmdEngine {
       const double face_lo = s_.box.lo[a] + ci[a] * cell_size_[a];
       const double face_hi = ci[a] + 1 == cells_[a] ? s_.box.hi[a] : face_lo + cell_size_[a];
       // Faces along x stretch with the periodic width (Couette servo); elsewhere they stand still.
-      const double rate_lo = a == 0 ? width_rate_ * ci[a] / cells_[a] : 0.0;
-      const double rate_hi = a == 0 ? width_rate_ * (ci[a] + 1) / cells_[a] : 0.0;
+      const double rate_lo = a == 0 ? servo_.width_rate() * ci[a] / cells_[a] : 0.0;
+      const double rate_hi = a == 0 ? servo_.width_rate() * (ci[a] + 1) / cells_[a] : 0.0;
       if (ci[a] > 0 || periodic) {
         const double t = closing_time(xi[a] - face_lo, vi[a] - rate_lo, ai[a]);
         if (t < best) {
@@ -925,9 +891,9 @@ class EdmdEngine {
       rows = std::nearbyint(d.y / s_.box.length(1));
       v.x += rows * shear_velocity_;
     }
-    if (width_rate_ != 0.0) {
+    if (servo_.width_rate() != 0.0) {
       const double dx = d.x - rows * shear_offset(s_.time);
-      v.x += std::nearbyint(dx / s_.box.length(0)) * width_rate_;
+      v.x += std::nearbyint(dx / s_.box.length(0)) * servo_.width_rate();
     }
     return v;
   }
@@ -939,67 +905,19 @@ class EdmdEngine {
     return offset < 0.0 ? offset + width : offset;
   }
 
-  double gap_at(double t) const {
-    return s_.walls[top_wall_].at(t) - s_.walls[bottom_wall_].at(t);
-  }
-
-  void start_servo() {
-    for (std::size_t w = 0; w < s_.walls.size(); ++w) {
-      if (s_.walls[w].face == 2) bottom_wall_ = static_cast<int>(w);
-      if (s_.walls[w].face == 3) top_wall_ = static_cast<int>(w);
-    }
-    const double gap = gap_at(s_.time);
-    aspect_ = s_.box.length(0) / gap;
-    shear_rate_ = (s_.walls[top_wall_].velocity.x - s_.walls[bottom_wall_].velocity.x) / gap;
-    servo_since_ = s_.time;
-    servo_gap_ = gap;
-    servo_state_.gap = gap;
-    servo_state_.width = s_.box.length(0);
-    servo_state_.top_speed = s_.walls[top_wall_].velocity.x;
-  }
-
-  bool servo_due() const {
-    return counters_.collisions - servo_collisions_ >= s_.servo.every_collisions ||
-           std::fabs(gap_at(s_.time) - servo_gap_) >= s_.servo.gap_change;
-  }
-
-  // Listing COL002: v <- v/2 + (sigma_measured - sigma_target), in Campbell's units (U_T for speeds,
-  // m U_T^2 / R^2 for 2D stresses), clipped to +-sigma_target; both walls move, the width follows
-  // the gap, the top wall speed keeps U_T / H, and every particle is re-predicted.
+  // The servo's update (couette_servo.hpp): new wall speeds from the measured stress, every
+  // particle brought to now before the walls change, the width and grid after them, every
+  // particle re-predicted.
   void servo_update() {
-    const double now = s_.time;
-    const double span = now - servo_since_;
-    if (span <= 0.0) return;
-    double area = s_.box.length(0);
-    if (Dim == 3) area *= s_.box.length(2);
-    const double stress =
-        0.5 * (wall_normal_impulse_[bottom_wall_] + wall_normal_impulse_[top_wall_]) / (span * area);
-    const double target = s_.servo.normal_stress / s_.stress_unit;
-    double speed = 0.5 * servo_state_.wall_speed / s_.speed_unit + (stress / s_.stress_unit - target);
-    speed = std::clamp(speed, -target, target) * s_.speed_unit;
-    synchronize(now);
-    const double gap = gap_at(now);
-    for (int w : {bottom_wall_, top_wall_}) {
-      EdmdWall& wall = s_.walls[w];
-      wall.position = wall.at(now);
-      wall.since = now;
-      wall.velocity.y = w == bottom_wall_ ? -speed : speed;
-    }
-    if (s_.servo.keep_shear_rate) s_.walls[top_wall_].velocity.x = s_.walls[bottom_wall_].velocity.x + shear_rate_ * gap;
-    if (s_.servo.scale_width) {
-      width_ref_ = width_at(now);
-      width_since_ = now;
-      width_rate_ = aspect_ * 2.0 * speed;
+    if (!servo_.measure(s_, Dim)) return;
+    synchronize(s_.time);
+    if (servo_.move_walls(s_)) {
       update_width();
       if (cell_size_[0] < max_diameter_) {  // the grid no longer spans a diameter per cell: rebuild it
         build_grid();
       }
     }
-    servo_state_ = {gap, s_.box.length(0), speed, stress, s_.walls[top_wall_].velocity.x};
-    std::fill(wall_normal_impulse_.begin(), wall_normal_impulse_.end(), 0.0);
-    servo_since_ = now;
-    servo_gap_ = gap;
-    servo_collisions_ = counters_.collisions;
+    servo_.finish_update(s_, counters_.collisions);
     ++counters_.servo_updates;
     repredict_all();
   }
@@ -1062,7 +980,7 @@ class EdmdEngine {
     const WallCondition condition = recent ? WallCondition::smooth : wall.condition;
     const Vec3 impulse = collide_wall({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
                                       normal, wall.velocity, recent ? elastic_ : wall.restitution, condition);
-    wall_normal_impulse_[w] += dot(impulse, normal);
+    servo_.add_normal_impulse(w, dot(impulse, normal));
     last_collision_[i] = s_.time;
     const double lost = before - kinetic_energy(i, wall.velocity);
     counters_.dissipated += lost;
@@ -1133,8 +1051,8 @@ class EdmdEngine {
         link(static_cast<int>(i));
         return;
       }
-      if (axis == 0 && width_rate_ != 0.0) {
-        flight_[i].v.x -= k * width_rate_;  // it becomes its image, which moves with the width rate
+      if (axis == 0 && servo_.width_rate() != 0.0) {
+        flight_[i].v.x -= k * servo_.width_rate();  // it becomes its image, which moves with the width rate
         ++flight_[i].count;
       }
     }
@@ -1155,17 +1073,10 @@ class EdmdEngine {
   std::vector<int> head_, prev_, cell_;
   std::vector<double> last_collision_;  // s, for the TC model
   double max_diameter_ = 0.0;
-  double uniform_radius_ = 0.0;
-  long long window_events_ = 0;  // events since the last progress check
-  double window_start_ = 0.0;    // s, time at the last progress check  // m, the radius of every particle, or 0 when sizes differ
-  double width_ref_ = 0.0, width_rate_ = 0.0, width_since_ = 0.0;  // periodic width L(t), Couette servo
+  double uniform_radius_ = 0.0;  // m, the radius of every particle, or 0 when sizes differ
+  StallDetector stall_;
   double shear_velocity_ = 0.0;  // m/s, Lees–Edwards: velocity of the image row above (shear rate x height)
-  std::vector<double> wall_normal_impulse_;  // kg m/s into each wall since the last servo update
-  int bottom_wall_ = -1, top_wall_ = -1;
-  double aspect_ = 0.0, shear_rate_ = 0.0;
-  double servo_since_ = 0.0, servo_gap_ = 0.0;
-  long long servo_collisions_ = 0;
-  ServoState servo_state_;
+  CouetteServo servo_;  // the Couette cell's walls and width (also the width law without [servo])
   std::vector<Flight> flight_;
   bool lists_ = false;                   // the neighbour-list path is in use
   double shell_ = 0.0;                   // m, how far a particle moves from its list centre before a rebuild

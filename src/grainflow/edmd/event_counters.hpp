@@ -1,0 +1,28 @@
+// What an event-driven run counts as it goes, and the Couette servo's last measurement.
+#pragma once
+
+namespace grainflow::edmd {
+
+struct EventCounters {
+  long long events = 0;          // every processed event, stale ones included
+  long long collisions = 0;      // particle-particle
+  long long wall_collisions = 0;
+  long long cell_crossings = 0;
+  long long stale = 0;           // events found invalid and re-predicted
+  long long list_rebuilds = 0;   // neighbour-list rebuilds (the list path has these instead of cell crossings)
+  long long rolling_starts = 0;  // wall rebounds too slow to bounce: the particle rolls
+  double virial = 0.0;           // sum over collisions of r_ij . J_i (kg m^2/s), for the pressure
+  double dissipated = 0.0;       // J lost in collisions
+  long long servo_updates = 0;   // pressure-servo wall speed changes
+};
+
+// The pressure-controlled Couette cell as last measured (section 2.14.3).
+struct ServoState {
+  double gap = 0.0;              // m, distance between the wall planes
+  double width = 0.0;            // m, periodic control-volume width
+  double wall_speed = 0.0;       // m/s, opening speed of each wall (> 0 apart)
+  double measured_stress = 0.0;  // N/m (2D) or Pa (3D), mean normal stress on the walls over the last period
+  double top_speed = 0.0;        // m/s, tangential speed of the top wall
+};
+
+}  // namespace grainflow::edmd
