@@ -1,4 +1,4 @@
-"""Checkpoints and restarts (issue 7): a run split in two by a checkpoint ends bitwise identical to
+"""Checkpoints and restarts: a run split in two by a checkpoint ends bitwise identical to
 the unsplit run, for a DEM vibrated bed and an event-driven chute; SIGINT and SIGTERM write a
 checkpoint and every output and exit with 130 / 143; a run killed with SIGKILL at any moment
 leaves readable outputs and a checkpoint it continues from exactly, HDF5 streams included (the

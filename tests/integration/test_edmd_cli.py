@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The event-driven engine from the command line (issue 3; INTERFACE.md "The output folder"):
+"""The event-driven engine from the command line (the output folder of OUTPUTS.md):
 
 - `grainflow run cases/campbell1982/chute_30deg.toml` (shortened with --set) exits 0 and writes
   summary.json with engine "edmd" and the EDMD keys (events, collisions, events_per_second, pressure,

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Strip profiles of event-driven runs (issue 5: "Strip profiles", "Chute flow as an engineer reads
+"""Strip profiles of event-driven runs ("Strip profiles", "Chute flow as an engineer reads
 it"; OUTPUTS.md, profiles.csv and summary.json of an edmd run), on Campbell's two cases:
 
 - cases/campbell1982/couette_noslip.toml (lengthened to 20000 R/U_T: 0.3 s of wall time): with

@@ -1,4 +1,4 @@
-"""The soft-sphere engine on several MPI ranks (issue 8): `mpirun -np N grainflow run CASE` with the
+"""The soft-sphere engine on several MPI ranks: `mpirun -np N grainflow run CASE` with the
 case files and outputs of a serial run.
 
 - A short run of Lan's bed (pouring, then shaking) on 1, 2 and 4 ranks ends in the same state. The

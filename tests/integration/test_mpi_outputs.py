@@ -1,4 +1,4 @@
-"""Every output of a soft-sphere run on several MPI ranks (issue 8): the same files as one rank's,
+"""Every output of a soft-sphere run on several MPI ranks: the same files as one rank's,
 and checkpoints that continue a run of several ranks exactly.
 
 Lan's bed (poured, then shaken; the short run of test_mpi_dem.py) with [trajectory], [zone_series],

@@ -1,4 +1,4 @@
-"""`mpirun -np N grainflow sweep ...` (issue 8): the runs of a sweep are shared out over the MPI ranks,
+"""`mpirun -np N grainflow sweep ...`: the runs of a sweep are shared out over the MPI ranks,
 each rank running every N-th as a plain one-rank process, and rank 0 writes the one sweep.csv and
 sweep.json for all of them, with the same results as a sweep without MPI.
 

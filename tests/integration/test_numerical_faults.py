@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Numerical faults at run time (issue 7, ROBUSTNESS.md): a run that goes wrong stops with exit
+"""Numerical faults at run time (ROBUSTNESS.md): a run that goes wrong stops with exit
 status 1 and a message naming the particle(s), the simulated time and the likely cause, and every
 output written so far is valid (summary.json with the message in `errors`, timeseries.csv,
 final_state.csv). One tiny case per fault, each well under a second:

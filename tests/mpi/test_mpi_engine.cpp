@@ -1,4 +1,4 @@
-// The soft-sphere engine's failure paths on two MPI ranks (issue 8), run by ctest under
+// The soft-sphere engine's failure paths on two MPI ranks, run by ctest under
 // `mpirun --oversubscribe -np 2`: a fault one rank finds inside a step must stop every rank at the
 // same step (the others would otherwise wait for it in the next exchange), and the run must then
 // write its outputs with the faulty rank's message. The faults cannot come from a valid case file

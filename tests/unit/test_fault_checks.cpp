@@ -1,4 +1,4 @@
-// Numerical faults (issue 7) that no valid case file reaches: a non-finite DEM or EDMD state, and
+// Numerical faults that no valid case file reaches: a non-finite DEM or EDMD state, and
 // an EDMD particle beyond a wall (the engine's exact flights keep one inside). The runs are driven
 // with a state the loader would refuse; each must stop with a message naming the particle, the
 // simulated time and the likely cause, exit status 1 and leave valid outputs. The faults a case

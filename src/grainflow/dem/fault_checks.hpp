@@ -1,4 +1,4 @@
-// Numerical faults of a soft-sphere run (issue 7): a state turned non-finite, a particle gone
+// Numerical faults of a soft-sphere run: a state turned non-finite, a particle gone
 // through a wall, an overlap beyond run.halt_overlap. Each check is O(N) (O(pairs) for the overlap)
 // and runs at output times or on a rare path, never inside the step loop; each builds a message
 // naming the particle(s), the simulated time and the likely cause, with numbers.

@@ -1,4 +1,4 @@
-// Numerical faults of an event-driven run (issue 7): a clock that stops advancing (inelastic
+// Numerical faults of an event-driven run: a clock that stops advancing (inelastic
 // collapse, Zeno bounces), a state turned non-finite, a particle gone through a wall. The collapse
 // message is built on the rare path where the engine's progress check fails; the other checks are
 // O(N) and run at output times, never per event.
