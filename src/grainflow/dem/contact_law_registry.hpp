@@ -16,36 +16,16 @@
 namespace grainflow::dem {
 
 template <ContactLaw... Laws>
-struct ContactLawList {
-  static constexpr std::size_t size = sizeof...(Laws);
-};
+struct ContactLawList {};
 
 // The first is the default of contact.model.
 using RegisteredContactLaws = ContactLawList<WaltonBraun, LinearDashpot>;
-
-namespace registry_detail {
-template <class F, ContactLaw... Laws>
-decltype(auto) visit(std::string_view name, F&& f, ContactLawList<Laws...>);
-}
 
 // The registered names, comma-separated, for messages.
 std::string contact_law_names();
 
 // The case loader's view of every registered law.
 ContactSchemas contact_schemas();
-
-// Calls f.template operator()<Law>() for the law called `name` and returns its result. The name
-// has been checked by the case loader; an unknown one here is a programming error.
-template <class F>
-decltype(auto) visit_contact_law(std::string_view name, F&& f) {
-  return registry_detail::visit(name, std::forward<F>(f), RegisteredContactLaws{});
-}
-
-// Calls f.template operator()<Law>() for every registered law, in order.
-template <class F>
-void for_each_contact_law(F&& f) {
-  [&]<ContactLaw... Laws>(ContactLawList<Laws...>) { (f.template operator()<Laws>(), ...); }(RegisteredContactLaws{});
-}
 
 namespace registry_detail {
 template <class F, ContactLaw First, ContactLaw... Rest>
@@ -62,5 +42,18 @@ decltype(auto) visit(std::string_view name, F&& f, ContactLawList<Laws...>) {
   return visit_one<F, Laws...>(name, std::forward<F>(f));
 }
 }  // namespace registry_detail
+
+// Calls f.template operator()<Law>() for the law called `name` and returns its result. The name
+// has been checked by the case loader; an unknown one here is a programming error.
+template <class F>
+decltype(auto) visit_contact_law(std::string_view name, F&& f) {
+  return registry_detail::visit(name, std::forward<F>(f), RegisteredContactLaws{});
+}
+
+// Calls f.template operator()<Law>() for every registered law, in order.
+template <class F>
+void for_each_contact_law(F&& f) {
+  [&]<ContactLaw... Laws>(ContactLawList<Laws...>) { (f.template operator()<Laws>(), ...); }(RegisteredContactLaws{});
+}
 
 }  // namespace grainflow::dem

@@ -165,8 +165,7 @@ class DemRun {
   std::optional<observe::ZoneProfile> profile;
   double dt = 0.0;
   long total_steps = 0;
-  Schedule output_schedule{0.0, 1.0}, profile_schedule{0.0, 1.0}, snapshot_schedule{0.0, 1.0},
-      checkpoint_schedule{0.0, 1.0};  // set in the constructor once dt is known
+  Schedule output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule;
   long average_from = 0;
   std::optional<TrajectoryOutput> trajectory;
   std::optional<ZoneSeriesOutput> zone_series;
@@ -190,7 +189,14 @@ class DemRun {
 };
 
 DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
-    : c(case_config), options(run_options), derived(dem::derive(case_config)) {
+    : c(case_config),
+      options(run_options),
+      derived(dem::derive(case_config)),
+      dt(derived.time_step),
+      output_schedule(c.output.interval, dt),
+      profile_schedule(c.output.profile_interval > 0.0 ? c.output.profile_interval : c.output.interval / 10.0, dt),
+      snapshot_schedule(c.output.snapshot_interval, dt),
+      checkpoint_schedule(c.output.checkpoint_interval, dt) {
   namespace fs = std::filesystem;
   dem::DemState initial = dem::build_dem_state(c);
   particle_count = static_cast<long long>(initial.particles.size());
@@ -217,12 +223,7 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   profile.emplace(axis, zones_lo, c.domain.hi[axis], zone_thickness, area);
   profile->set_reduce(rank_reduce);
 
-  dt = derived.time_step;
   total_steps = static_cast<long>(std::llround(c.run.duration / dt));
-  output_schedule = Schedule(c.output.interval, dt);
-  const double profile_interval = c.output.profile_interval > 0.0 ? c.output.profile_interval : c.output.interval / 10.0;
-  profile_schedule = Schedule(profile_interval, dt);
-  snapshot_schedule = Schedule(c.output.snapshot_interval, dt);
   average_from = static_cast<long>(std::ceil(c.output.average_start / dt - 1e-9));
 
   if (c.trajectory.enabled) trajectory.emplace(c, derived, initial.particles, dir, writes, rank_reduce);
@@ -235,7 +236,6 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
 
   bed_thresholds = observe::BedSurfaceThresholds{c.output.bed_gap_fraction, c.output.bed_surface_fraction};
   floor_below = c.gravity[axis] < 0.0;
-  checkpoint_schedule = Schedule(c.output.checkpoint_interval, dt);
   progress.emplace(!options.quiet && ::isatty(2) && writes, c.run.duration);
   wall_start = std::chrono::steady_clock::now();
   last_flush = wall_start;

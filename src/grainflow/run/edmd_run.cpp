@@ -57,7 +57,7 @@ class EdmdRun {
   template <class E> void checkpoint(E& e);
   template <class E> void start(E& e);
   template <class E> void event_loop(E& e);
-  template <class E> void write_timeseries(E& e) const;
+  void write_timeseries() const;
   template <class E> void write_outputs(E& e);
 
   const CaseConfig& c;
@@ -252,8 +252,7 @@ int EdmdRun::run() {
   return exit_status;
 }
 
-template <class E>
-void EdmdRun::write_timeseries(E&) const {
+void EdmdRun::write_timeseries() const {
   io::write_atomically(dir + "/timeseries.csv", [&](std::ostream& out) {
     out << "# units: time s, energies J, granular_temperature m^2/s^2 (per degree of freedom), pressure "
         << (dim == 2 ? "N/m" : "Pa") << " (kinetic + collisional virial over the interval), dissipated J\n";
@@ -284,7 +283,7 @@ void EdmdRun::write_outputs(E& e) {
     const double r = st.particles.radius[i];
     solids += dim == 2 ? M_PI * r * r : 4.0 / 3.0 * M_PI * r * r * r;
   }
-  write_timeseries(e);
+  write_timeseries();
   write_final_state(dir + "/final_state.csv", st.particles, st.species);
 
   const double volume = current_measure(e);
