@@ -22,6 +22,7 @@
 #include "grainflow/dem/fault_checks.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
 #include "grainflow/dem/portable_state.hpp"
+#include "grainflow/observe/coordination.hpp"
 
 namespace grainflow::dem {
 
@@ -185,9 +186,7 @@ class DemEngine {
 
   // Particles and walls each particle touches now (coordination numbers, Lan 1994 Fig. A5.17), by
   // index: one pass over the pair list, however many particles are asked about.
-  struct Coordination {
-    int particles = 0, walls = 0;
-  };
+  using Coordination = observe::Coordination;
   std::vector<Coordination> coordination() const {
     std::vector<Coordination> c(s_.particles.size());
     for (std::size_t a = 0; a + 1 < pairs_.offsets.size(); ++a)

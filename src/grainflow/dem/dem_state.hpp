@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "grainflow/config/case_config.hpp"
+#include "grainflow/core/face_wall.hpp"
 #include "grainflow/core/periodic_box.hpp"
 #include "grainflow/dem/wall_motion.hpp"
 #include "grainflow/particles/particle_store.hpp"
@@ -13,20 +14,17 @@
 namespace grainflow::dem {
 
 // A flat wall on one face of the box: a boundary sphere of infinite mass (section 2.6.2).
-struct FlatWall {
-  int face = 0;
-  int axis = 0;
-  double inward = 1.0;          // +1 on a lo face (normal +e_axis), -1 on a hi face
+struct FlatWall : FaceWall {
   double base_position = 0.0;   // m, plane coordinate at t = 0
   WallMotion motion;
-  double position = 0.0;        // m, current plane coordinate
-  Vec3 velocity;                // m/s, current
   double friction = 0.0;        // the contact law's own wall keys are in the case (WallConfig::contact)
   bool bumpy = false;           // backing plane of a bumpy wall
 
+  // Position and velocity at time t (`since` = t: at() is exact only now, as the motion is not linear).
   void move_to(double t) {
     position = base_position + motion.displacement(t)[axis];
     velocity = motion.velocity(t);
+    since = t;
   }
 };
 

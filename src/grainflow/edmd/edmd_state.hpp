@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "grainflow/config/case_config.hpp"
+#include "grainflow/core/face_wall.hpp"
 #include "grainflow/core/periodic_box.hpp"
 #include "grainflow/edmd/collision_rules.hpp"
 #include "grainflow/particles/particle_store.hpp"
@@ -15,16 +16,9 @@ namespace grainflow::edmd {
 
 // A plane wall on one face of the box, moving at constant velocity (Couette walls slide along
 // the flow direction; the pressure servo changes the normal speed between events).
-struct EdmdWall {
-  int face = 0;
-  int axis = 0;
-  double inward = 1.0;          // +1 on a lo face, -1 on a hi face
-  double position = 0.0;        // m, plane coordinate at time `since`
-  double since = 0.0;           // s
-  Vec3 velocity;                // m/s; the normal component moves the plane
+struct EdmdWall : FaceWall {
   WallCondition condition = WallCondition::smooth;
   RestitutionLaw restitution;
-  double at(double t) const { return position + velocity[axis] * (t - since); }
 };
 
 struct EdmdState {

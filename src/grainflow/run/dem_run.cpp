@@ -25,11 +25,12 @@
 #include "grainflow/io/hdf5_file.hpp"
 #include "grainflow/io/json_writer.hpp"
 #include "grainflow/analysis/block_average.hpp"
-#include "grainflow/run/dem_sampled_outputs.hpp"
+#include "grainflow/run/observer_registry.hpp"
 #include "grainflow/io/vtu_writer.hpp"
 #include "grainflow/observe/bed_surface.hpp"
 #include "grainflow/observe/global_sample.hpp"
-#include "grainflow/observe/zone_profile.hpp"
+#include "grainflow/observe/floor_motion.hpp"
+#include "grainflow/observe/zone_profile_observer.hpp"
 
 namespace grainflow::run {
 namespace {
@@ -62,34 +63,6 @@ void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>&
   });
 }
 
-void write_profiles(const std::string& path, const observe::ZoneProfile& profile, double diameter, double g) {
-  io::write_atomically(path, [&](std::ostream& out) {
-    out << "# zone profiles along the gravity axis, long-term averages over " << profile.samples()
-        << " samples; temperature = about the instantaneous zone mean (Lan), temperature_time_mean = about the"
-           " long-term zone mean (Campbell)\n";
-    out << "# units: position m, Y 1 (position / d), velocities m/s, temperatures m^2/s^2, W 1 (sqrt(T/(g d))), "
-           "kinetic_energy_density J/m^3; *_error: standard errors by block averaging (nan: too few samples)\n";
-    out << "zone,position_lo,position_hi,position,Y,solids_fraction,mean_velocity_x,mean_velocity_y,mean_velocity_z,"
-           "temperature_x,temperature_y,temperature_z,temperature,temperature_time_mean,W,kinetic_energy_density,"
-           "solids_fraction_error,mean_velocity_y_error,temperature_error,temperature_time_mean_error,W_error\n";
-    const auto zones = profile.averages();
-    for (std::size_t z = 0; z < zones.size(); ++z) {
-      const auto& a = zones[z];
-      const double mid = 0.5 * (a.lo + a.hi);
-      const double t = (a.temperature_lan.x + a.temperature_lan.y + a.temperature_lan.z) / 3.0;
-      const double tm = (a.temperature_time_mean.x + a.temperature_time_mean.y + a.temperature_time_mean.z) / 3.0;
-      const double w = g > 0.0 ? std::sqrt(t / (g * diameter)) : 0.0;
-      // dW = dT / (2 sqrt(T g d)), first-order propagation.
-      const double w_error = t > 0.0 && g > 0.0 ? a.temperature_lan_error / (2.0 * std::sqrt(t * g * diameter)) : NAN;
-      out << z << ',' << a.lo << ',' << a.hi << ',' << mid << ',' << mid / diameter << ',' << a.solids_fraction << ','
-          << a.mean_velocity.x << ',' << a.mean_velocity.y << ',' << a.mean_velocity.z << ',' << a.temperature_lan.x
-          << ',' << a.temperature_lan.y << ',' << a.temperature_lan.z << ',' << t << ',' << tm << ',' << w << ','
-          << a.kinetic_energy_density << ',' << a.solids_fraction_error << ',' << a.mean_velocity_error.y << ','
-          << a.temperature_lan_error << ',' << a.temperature_time_mean_error << ',' << w_error << '\n';
-    }
-  });
-}
-
 // Mean and block-averaged standard error of a time-series column over the rows from `from` on.
 struct MeanWithError {
   double mean = 0.0, error = NAN;
@@ -118,6 +91,19 @@ void put(io::JsonObject& summary, const std::string& key, const MeanWithError& m
   if (std::isfinite(m.error)) summary.number(key + "_error", m.error);
 }
 
+// What observers see of a state; the clock is refreshed before each use.
+observe::Frame frame_of(const dem::DemState& st) {
+  observe::Frame f;
+  f.dimension = 3;
+  f.time = st.time;
+  f.time_step = st.time_step;
+  f.step = st.step;
+  f.particles = &st.particles;
+  f.box = &st.box;
+  f.walls = FaceWalls(st.walls);
+  return f;
+}
+
 // One DEM run: built from the case (observers, schedules, engine), then stepped, then written.
 // Each member function is one stage; the state they share is the members below.
 class DemRun {
@@ -135,6 +121,8 @@ class DemRun {
   template <class E> void start(E& e);
   template <class E> void step_loop(E& e);
   void handle_failure_outside_loop();
+  template <class E> void bind_frame(E& e);
+  template <class E> const observe::Frame& frame_now(E& e);
   template <class E> void write_outputs(E& e);
   template <class E> void write_summary(E& e, long long moving, const observe::GlobalSample& global,
                                         long long migrations, long long ghosts);
@@ -161,16 +149,17 @@ class DemRun {
   std::optional<io::PvdSeries> snapshots;
   int axis = 1;
   double area = 1.0;
-  double zones_lo = 0.0;
-  std::optional<observe::ZoneProfile> profile;
+  observe::RunContext context;
+  // The case's observers (run/observer_registry.cpp), each offered every step, and the frame they
+  // see: pointers into the engine's state, the clock refreshed each step.
+  std::vector<std::unique_ptr<observe::Observer>> observers;
+  observe::Frame frame;
+  observe::OutputSink sink;
+  io::JsonObject summary;
+  std::optional<observe::ZoneProfile> zones_now;  // Lan's cell temperature of each time-series row
   double dt = 0.0;
   long total_steps = 0;
-  Schedule output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule;
-  long average_from = 0;
-  std::optional<TrajectoryOutput> trajectory;
-  std::optional<ZoneSeriesOutput> zone_series;
-  std::optional<FieldOutput> field;
-  std::optional<TracerOutput> tracers;
+  Schedule output_schedule, snapshot_schedule, checkpoint_schedule;
   std::optional<dem::EngineDomain> domain;
   std::unique_ptr<dem::DemEngineVariant> engine;  // built in place: an engine is not moved once built
   observe::BedSurfaceThresholds bed_thresholds;
@@ -194,7 +183,6 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
       derived(dem::derive(case_config)),
       dt(derived.time_step),
       output_schedule(c.output.interval, dt),
-      profile_schedule(c.output.profile_interval > 0.0 ? c.output.profile_interval : c.output.interval / 10.0, dt),
       snapshot_schedule(c.output.snapshot_interval, dt),
       checkpoint_schedule(c.output.checkpoint_interval, dt) {
   namespace fs = std::filesystem;
@@ -203,7 +191,7 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count, comm);
   if (restart && restart->portable) {
     portable_restart.emplace(io::StateArchive::for_reading(restart->state, options.restart));
-    portable_restart->tag("portable dem run");
+    portable_restart->tag("portable dem run with observers");
     read_portable_particles(*portable_restart, portable_particles, initial);
   }
 
@@ -212,24 +200,15 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
 
   axis = derived.gravity_axis;
-  double zone_thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : derived.reference_diameter;
   for (int a = 0; a < 3; ++a)
     if (a != axis) area *= c.domain.length(a);
-  // Zones start at the floor's lowest reach, in whole zones below domain.lo, so that material under a
-  // floor shaken below its rest position is still counted.
-  zones_lo = c.domain.lo[axis];
-  if (c.drive.enabled && c.drive.face == axis * 2)
-    zones_lo -= zone_thickness * std::ceil(c.drive.amplitude[axis] / zone_thickness - 1e-9);
-  profile.emplace(axis, zones_lo, c.domain.hi[axis], zone_thickness, area);
-  profile->set_reduce(rank_reduce);
-
   total_steps = static_cast<long>(std::llround(c.run.duration / dt));
-  average_from = static_cast<long>(std::ceil(c.output.average_start / dt - 1e-9));
 
-  if (c.trajectory.enabled) trajectory.emplace(c, derived, initial.particles, dir, writes, rank_reduce);
-  if (c.zone_series.enabled) zone_series.emplace(c, derived, *profile, dir, writes);
-  if (c.field.enabled) field.emplace(c, derived, zones_lo);
-  if (c.tracers.enabled) tracers.emplace(c, derived, initial.particles);
+  context = observe::RunContext{&c, 3, axis, derived.reference_diameter, dt, derived.restitution, dir, writes,
+                                rank_reduce, &comm};
+  zones_now.emplace(observe::ZoneLayout(context).profile(context));
+  observers = make_observers(EngineKind::dem, context, frame_of(initial));
+  sink = observe::OutputSink{dir, writes, &summary, &warnings};
 
   if (ranks) domain = dem::EngineDomain{&comm, dem_grid(initial, comm.size())};
   engine.reset(new dem::DemEngineVariant(dem::make_engine(c, std::move(initial), options.threads, domain ? &*domain : nullptr)));
@@ -246,6 +225,22 @@ void DemRun::snapshot(const dem::DemState& st) {
   else snapshots->add(st.particles, st.time);
 }
 
+// The frame observers see: pointers into the engine's state (built in place, so they stay valid).
+template <class E>
+void DemRun::bind_frame(E& e) {
+  frame = frame_of(e.state());
+  frame.coordination = [&e] { return e.coordination(); };
+}
+
+template <class E>
+const observe::Frame& DemRun::frame_now(E& e) {
+  const auto& st = e.state();
+  frame.time = st.time;
+  frame.step = st.step;
+  frame.collisions = e.statistics().collisions;
+  return frame;
+}
+
 // All particles on rank 0 (for final_state.csv and a checkpoint's datasets); the engine's own on
 // one rank.
 template <class E>
@@ -258,13 +253,13 @@ const ParticleStore& DemRun::all_particles(E& e) {
 // The run's whole state, one function for both directions (checkpoint and restart).
 template <class E>
 void DemRun::transfer(io::StateArchive& ar, E& e) {
-  ar.tag("dem run");
-  ar(e, rows, *profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
+  ar.tag("dem run with observers");
+  ar(e, rows, max_overlap_seen, output_schedule, snapshot_schedule, checkpoint_schedule);
   if (snapshots) ar(*snapshots);
-  if (field) ar(*field);
-  if (tracers) ar(*tracers);
-  if (trajectory) ar(*trajectory);
-  if (zone_series) ar(*zone_series);
+  for (auto& o : observers) {
+    ar.tag(o->name());
+    o->serialize(ar);
+  }
   ar.tag("end of dem run");
 }
 
@@ -273,25 +268,13 @@ void DemRun::transfer(io::StateArchive& ar, E& e) {
 // kept by one rank at the restart). Collective; rank 0's archive is the one written.
 template <class E>
 void DemRun::portable_run(io::StateArchive& ar, E& e) {
-  ar.tag("portable dem run");
+  ar.tag("portable dem run with observers");
   write_portable_engine(ar, e, comm);
-  ar(rows, *profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
+  ar(rows, max_overlap_seen, output_schedule, snapshot_schedule, checkpoint_schedule);
   if (snapshots) ar(*snapshots);
-  if (zone_series) ar(*zone_series);
-  if (field) {
-    FieldOutput whole = *field;
-    if (ranks) whole.field->sum_over_ranks(rank_reduce);
-    ar(whole);
-  }
-  if (tracers) {
-    TracerOutput whole = *tracers;
-    whole.rows = tracers->gathered_rows(comm);
-    ar(whole);
-  }
-  if (trajectory) {
-    observe::TrajectorySampler whole = *trajectory->sampler;
-    whole.sum_open_window();
-    ar(whole);
+  for (auto& o : observers) {
+    ar.tag(o->name());
+    o->save_portable(ar);
   }
   ar.tag("end of portable dem run");
 }
@@ -299,21 +282,12 @@ void DemRun::portable_run(io::StateArchive& ar, E& e) {
 template <class E>
 void DemRun::restore_portable_run(io::StateArchive& ar, E& e) {
   read_portable_contacts(ar, e, portable_particles, writes);
-  ar(rows, *profile, max_overlap_seen, output_schedule, profile_schedule, snapshot_schedule, checkpoint_schedule);
+  ar(rows, max_overlap_seen, output_schedule, snapshot_schedule, checkpoint_schedule);
   if (snapshots) ar(*snapshots);
-  if (zone_series) ar(*zone_series);
   // Rank 0 keeps the summed accumulators; the other ranks add their shares from here on.
-  if (field) {
-    ar(*field);
-    if (!writes) field->field->clear_sums();
-  }
-  if (tracers) {
-    ar(*tracers);
-    if (!writes) tracers->rows.clear();
-  }
-  if (trajectory) {
-    ar(*trajectory->sampler);
-    if (!writes) trajectory->sampler->clear_open_window();
+  for (auto& o : observers) {
+    ar.tag(o->name());
+    o->load_portable(ar, writes);
   }
   ar.tag("end of portable dem run");
   ar.expect_end();
@@ -324,8 +298,7 @@ void DemRun::restore_portable_run(io::StateArchive& ar, E& e) {
 // file, and the portable state.
 template <class E>
 void DemRun::checkpoint(E& e) {
-  if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
-  if (zone_series) zone_series->copy_stream(dir + "/checkpoint_zone_series.h5");
+  for (auto& o : observers) o->save_streams(dir);
   io::StateArchive portable = io::StateArchive::for_writing();
   portable_run(portable, e);
   write_run_checkpoint(dir, c, all_particles(e), e.state().time, e.state().step,
@@ -353,7 +326,7 @@ void DemRun::record(E& e) {
   TimeseriesRow row{};
   row.time = st.time;
   row.global = observe::sample_global(st.particles, axis, rank_reduce);
-  const FloorMotion floor = floor_motion(st, c);
+  const observe::FloorMotion floor = observe::floor_motion(frame.walls, c);
   row.floor_position = floor.position;
   row.floor_velocity = floor.velocity;
   row.max_overlap_ratio = stats.max_overlap_ratio;
@@ -363,9 +336,9 @@ void DemRun::record(E& e) {
   row.collisions = stats.collisions;
   row.wall_collisions = stats.wall_collisions;
   if (floor_below)
-    row.bed = observe::measure_bed_surface(st.particles, axis, floor_position(st, c, axis), area,
+    row.bed = observe::measure_bed_surface(st.particles, axis, observe::floor_position(frame.walls, c, axis), area,
                                            derived.reference_diameter, bed_thresholds, rank_reduce);
-  row.cell_temperature = profile->instantaneous_temperature(st.particles);
+  row.cell_temperature = zones_now->instantaneous_temperature(st.particles);
   e.statistics().max_overlap_ratio = 0.0;
   rows.push_back(row);
   // Radius expansion (section 2.2) overlaps growing spheres on purpose: monitor only after it.
@@ -384,6 +357,7 @@ void DemRun::record(E& e) {
 // A fresh start records t = 0; a restart reads its state back (this rank count's, or portable).
 template <class E>
 void DemRun::start(E& e) {
+  bind_frame(e);
   if (portable_restart) {
     restore_portable_run(*portable_restart, e);
     warnings.push_back("continued on " + std::to_string(comm.size()) + " MPI rank(s) from a checkpoint of " +
@@ -395,8 +369,7 @@ void DemRun::start(E& e) {
   }
   if (restart) {
     const std::string beside = checkpoint_folder(options.restart);
-    if (trajectory) trajectory->resume_stream(beside + "/checkpoint_trajectory.h5");
-    if (zone_series) zone_series->resume_stream(beside + "/checkpoint_zone_series.h5");
+    for (auto& o : observers) o->resume_streams(beside);
     first_step = e.state().step;
   } else {
     record(e);
@@ -412,12 +385,8 @@ void DemRun::step_loop(E& e) {
     else if (step % 100 == 0) interrupted = static_cast<int>(comm.max(pending_interrupt()));
     if (interrupted != 0) break;
     e.step();
-    if (trajectory) trajectory->sampler->observe(e.state().particles, e.state().box, e.state().time - dt, e.state().time);
-    if (zone_series) zone_series->observe(e.state(), *profile, c);
-    if (field) field->observe(e.state(), c);
-    if (tracers) tracers->observe(e, c);
-    // Each rank samples its own particles; the zone sums are added over the ranks.
-    if (profile_schedule.due(step) && step >= average_from) profile->sample(e.state().particles);
+    const observe::Frame& now = frame_now(e);
+    for (auto& o : observers) o->sample(now);
     if (output_schedule.due(step)) {
       record(e);
       progress->update(e.state().time);
@@ -425,7 +394,7 @@ void DemRun::step_loop(E& e) {
       const auto now = std::chrono::steady_clock::now();
       if (comm.any(now - last_flush > std::chrono::seconds(30))) {
         if (writes) write_timeseries(dir + "/timeseries.csv", rows);
-        if (tracers) tracers->write(dir + "/tracers.csv", comm);
+        for (auto& o : observers) o->flush(sink);
         last_flush = now;
       }
     }
@@ -474,8 +443,7 @@ int DemRun::run() {
   }
   handle_failure_outside_loop();
   progress->finish();
-  if (trajectory) trajectory->finish(warnings);
-  if (zone_series) zone_series->finish(warnings);
+  for (auto& o : observers) o->finish(sink);
   wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   std::visit([&](auto& e) { write_outputs(e); }, *engine);
   return exit_status;
@@ -491,13 +459,11 @@ void DemRun::write_outputs(E& e) {
   const auto global = observe::sample_global(st.particles, axis, rank_reduce);
   const long long migrations = e.domain() ? comm.sum(e.domain()->migrated()) : 0;
   const long long ghosts = e.domain() ? comm.sum(e.domain()->ghosts()) : 0;
-  if (field && ranks) field->field->sum_over_ranks(rank_reduce);
-  if (tracers) tracers->write(dir + "/tracers.csv", comm);  // collective: rank 0 writes
+  const observe::Frame& last = frame_now(e);
+  for (auto& o : observers) o->write(last, sink);  // collective: rank 0 writes
   if (!writes) return;  // rank 0 writes the run's other files
   write_timeseries(dir + "/timeseries.csv", rows);
-  write_profiles(dir + "/profiles.csv", *profile, derived.reference_diameter, derived.gravity_magnitude);
   write_final_state(dir + "/final_state.csv", everyone, st.species);
-  if (field) field->write(dir, c);
   write_summary(e, moving, global, migrations, ghosts);
 }
 
@@ -512,7 +478,6 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
       mean_temperature += r.global.granular_temperature;
       ++counted;
     }
-  io::JsonObject summary;
   summary.string("engine", "dem");
   summary.integer("dimension", 3);
   summary.integer("particles", moving);
@@ -551,7 +516,6 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
   summary.number("kinetic_energy", global.kinetic_energy);
   summary.number("rotational_energy", global.rotational_energy);
   summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
-  summary.integer("profile_samples", profile->samples());
   // Lan's dimensionless groups (eqs. 4-1-2, 4-1-3) and Gamma, so sweeps can plot against them.
   summary.integer("gravity_axis", axis);
   summary.number("mass_holdup", derived.mass_holdup);
@@ -575,15 +539,6 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
     summary.number("wall_collision_rate_per_particle",
                    static_cast<double>(rows.back().wall_collisions - first->wall_collisions) / moving / span);
   }
-  // Height of the long-term density peak above the floor's rest position, in diameters (Fig. A4.8).
-  const auto zones = profile->averages();
-  if (!zones.empty() && profile->samples() > 0) {
-    const auto peak = std::max_element(zones.begin(), zones.end(), [](const auto& a, const auto& b) {
-      return a.solids_fraction < b.solids_fraction;
-    });
-    summary.number("density_peak_Y", (0.5 * (peak->lo + peak->hi) - c.domain.lo[axis]) / derived.reference_diameter);
-  }
-  if (field) summary.number("convection_speed", field->field->convection_speed());
   summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
   exit_status = finish_summary(summary, dir, errors, warnings, exit_status, options.echo_errors);
 }

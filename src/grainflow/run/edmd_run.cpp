@@ -11,11 +11,10 @@
 #include <unistd.h>
 #include <variant>
 
-#include "grainflow/run/edmd_collision_outputs.hpp"
-#include "grainflow/run/edmd_constitutive_output.hpp"
-#include "grainflow/run/edmd_profiles.hpp"
-#include "grainflow/run/edmd_trajectory_output.hpp"
+#include "grainflow/run/observer_registry.hpp"
 #include "grainflow/run/run_support.hpp"
+#include "grainflow/run/steady_state_report.hpp"
+#include "grainflow/observe/strip_profile_observer.hpp"
 #include "grainflow/run/checkpointing.hpp"
 #include "grainflow/run/interrupt.hpp"
 #include "grainflow/parallel/communicator.hpp"
@@ -57,6 +56,11 @@ class EdmdRun {
   template <class E> void checkpoint(E& e);
   template <class E> void start(E& e);
   template <class E> void event_loop(E& e);
+  template <class E> void bind_frame(E& e);
+  template <class E> const observe::Frame& frame_now(E& e);
+  template <class E> void listen_to_collisions(E& e);
+  double next_sample_time() const;
+  double first_profile_sample() const;
   void write_timeseries() const;
   template <class E> void write_outputs(E& e);
 
@@ -64,11 +68,15 @@ class EdmdRun {
   const RunOptions& options;
   const int dim;
   std::optional<io::Checkpoint> restart;
-  std::optional<EdmdProfiles> profiles;
   std::unique_ptr<EdmdVariant> engine;  // built in place: an engine is not moved once built
   std::string dir;
   std::optional<io::PvdSeries> snapshots;
-  std::optional<EdmdTrajectoryOutput> trajectory;  // [trajectory]: instantaneous states for the distributions
+  // The case's observers (run/observer_registry.cpp): strip profiles, collision stresses, the
+  // trajectory, each sampled at the times it asks for, and the frame they see.
+  std::vector<std::unique_ptr<observe::Observer>> observers;
+  observe::Frame frame;
+  io::JsonObject summary;
+  observe::OutputSink sink;
   double measure = 1.0;  // box area in 2D, volume in 3D (a Couette cell's follows its walls and width)
   int gravity_axis = 1;
   std::vector<Row> rows;
@@ -81,8 +89,6 @@ class EdmdRun {
   // Long-term sums from average_start: time-integrated kinetic "m v^2" sum and the virial.
   double average_kinetic = 0.0, average_temperature = 0.0, average_virial = 0.0, average_span = 0.0;
   long average_rows = 0;
-  // Stresses, wall loads and collision angles from the collisions, sampled with the strip profiles.
-  std::optional<EdmdCollisionOutputs> collision_outputs;
   double end_time = 0.0;
   // Rows, snapshots, samples and checkpoints each on their own exact grid k * interval.
   long row = 1, shot = 1, checkpoints = 1;
@@ -100,13 +106,16 @@ EdmdRun::EdmdRun(const CaseConfig& case_config, const RunOptions& run_options)
   edmd::EdmdState initial = edmd::build_edmd_state(c);
   if (!options.restart.empty())
     restart = read_restart(options.restart, c, static_cast<long long>(initial.particles.size()));
-  profiles.emplace(c, initial);
   engine.reset(dim == 2 ? new EdmdVariant(std::in_place_index<0>, std::move(initial))
                         : new EdmdVariant(std::in_place_index<1>, std::move(initial)));
   fs::create_directories(options.output_directory);
   dir = options.output_directory;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
-  if (c.trajectory.enabled) std::visit([&](auto& e) { trajectory.emplace(c, e.state(), dir); }, *engine);
+  std::visit([&](auto& e) { bind_frame(e); }, *engine);
+  const int along_gravity = std::fabs(c.gravity.x) > std::fabs(c.gravity.y) ? 0 : 1;
+  const observe::RunContext context{&c, dim, along_gravity, c.species.front().diameter, 0.0, 0.0, dir, true, {}, nullptr};
+  observers = make_observers(EngineKind::edmd, context, frame);
+  sink = observe::OutputSink{dir, true, &summary, &warnings};
   for (int a = 0; a < dim; ++a) measure *= c.domain.length(a);
   gravity_axis = std::fabs(c.gravity.x) > std::fabs(c.gravity.y) ? 0 : 1;
   progress.emplace(!options.quiet && ::isatty(2), c.run.duration);
@@ -118,6 +127,47 @@ template <class E>
 double EdmdRun::current_measure(const E& e) const {
   if (!c.servo.enabled) return measure;
   return e.servo().gap * e.servo().width * (dim == 3 ? c.domain.length(2) : 1.0);
+}
+
+// The frame observers see: pointers into the engine's state (built in place, so they stay valid).
+template <class E>
+void EdmdRun::bind_frame(E& e) {
+  const auto& st = e.state();
+  frame.dimension = dim;
+  frame.particles = &st.particles;
+  frame.box = &st.box;
+  frame.walls = FaceWalls(st.walls);
+  frame.wall_contacts = [&e](const observe::Frame::WallContactVisit& visit) { e.for_each_rolling(visit); };
+  frame_now(e);
+}
+
+template <class E>
+const observe::Frame& EdmdRun::frame_now(E& e) {
+  frame.time = e.state().time;
+  frame.collisions = e.counters().collisions;
+  return frame;
+}
+
+// The engine reports every collision to the observer that asks for them now (at most one does).
+template <class E>
+void EdmdRun::listen_to_collisions(E& e) {
+  observe::CollisionObserver* listener = nullptr;
+  for (auto& o : observers)
+    if (auto* l = o->collision_observer()) listener = l;
+  e.set_observer(listener);
+}
+
+double EdmdRun::next_sample_time() const {
+  double t = kNeverTime;
+  for (const auto& o : observers) t = std::min(t, o->next_time());
+  return t;
+}
+
+// When the strip profiles began averaging (NaN before), for the convergence check.
+double EdmdRun::first_profile_sample() const {
+  for (const auto& o : observers)
+    if (const auto* p = dynamic_cast<const observe::StripProfileObserver*>(o.get())) return p->first_sample_time();
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 template <class E>
@@ -156,31 +206,32 @@ void EdmdRun::record(E& e) {
 // The run's whole state, one function for both directions (checkpoint and restart).
 template <class E>
 void EdmdRun::transfer(io::StateArchive& ar, E& e) {
-  ar.tag("edmd run");
+  ar.tag("edmd run with observers");
   ar(e, rows, last_time, last_virial, average_kinetic, average_temperature, average_virial, average_span, average_rows);
-  ar(row, shot, checkpoints, *profiles);
-  if (collision_outputs) ar(*collision_outputs);
+  ar(row, shot, checkpoints);
   if (snapshots) ar(*snapshots);
-  if (trajectory) ar(*trajectory);
+  for (auto& o : observers) {
+    ar.tag(o->name());
+    o->serialize(ar);
+  }
   ar.tag("end of edmd run");
 }
 
-// trajectory.h5 is copied beside the checkpoint first: a checkpoint never counts more samples
-// than its copy holds.
+// Streamed files are copied beside the checkpoint first: a checkpoint never counts more samples
+// than its copies hold.
 template <class E>
 void EdmdRun::checkpoint(E& e) {
-  if (trajectory) trajectory->copy_stream(dir + "/checkpoint_trajectory.h5");
+  for (auto& o : observers) o->save_streams(dir);
   write_run_checkpoint(dir, c, e.state().particles, e.state().time, e.counters().events,
                        [&](io::StateArchive& ar) { transfer(ar, e); });
 }
 
 template <class E>
 void EdmdRun::start(E& e) {
-  if (c.output.collision_stresses) collision_outputs.emplace(c, e.state());
   if (restart) {
     restore_run_state(*restart, options.restart, [&](io::StateArchive& ar) { transfer(ar, e); });
-    if (collision_outputs) collision_outputs->resume(e);
-    if (trajectory) trajectory->resume_stream(checkpoint_folder(options.restart) + "/checkpoint_trajectory.h5");
+    listen_to_collisions(e);
+    for (auto& o : observers) o->resume_streams(checkpoint_folder(options.restart));
     first_events = e.counters().events;
     first_collisions = e.counters().collisions;
   } else {
@@ -198,14 +249,14 @@ void EdmdRun::event_loop(E& e) {
       if ((interrupted = pending_interrupt()) != 0) break;
       const double next_row = std::min(end_time, row * c.output.interval);
       const double next_shot = snapshots ? grid_time(shot, c.output.snapshot_interval, end_time) : kNeverTime;
-      const double next_state = trajectory ? trajectory->next_time() : kNeverTime;
-      const double t = std::min({next_row, next_shot, profiles->next_time(), next_state});
+      const double t = std::min({next_row, next_shot, next_sample_time()});
       e.advance_to(t);
-      if (profiles->next_time() <= t) {  // every output.profile_interval
-        profiles->sample(e.state(), e.counters().collisions);
-        if (collision_outputs) collision_outputs->sample(e);
+      if (next_sample_time() <= t) {
+        const observe::Frame& now = frame_now(e);
+        for (auto& o : observers)
+          if (o->next_time() <= t) o->sample(now);
+        listen_to_collisions(e);
       }
-      if (trajectory && next_state <= t) trajectory->sample(e.state());
       if (snapshots && next_shot <= t) {
         snapshots->add(e.state().particles, e.state().time);
         ++shot;
@@ -295,7 +346,6 @@ void EdmdRun::write_outputs(E& e) {
     pressure = (average_kinetic / average_rows + average_virial / average_span) / (dim * volume);
   }
   const auto global = observe::sample_global(st.particles, gravity_axis);
-  io::JsonObject summary;
   summary.string("engine", "edmd");
   summary.integer("dimension", dim);
   summary.integer("particles", static_cast<long long>(n));
@@ -328,22 +378,14 @@ void EdmdRun::write_outputs(E& e) {
     summary.number("wall_gap", e.servo().gap);
     summary.number("cell_width", e.servo().width);
   }
-  if (collision_outputs) {
-    collision_outputs->finish(e);
-    collision_outputs->write(dir, summary, warnings);
-  }
-  profiles->write(dir, summary, warnings);
-  if (collision_outputs && profiles->samples() > 0) {
-    bool wall_below = false, wall_above = false;
-    for (const auto& w : e.state().walls) wall_below |= w.face == 2, wall_above |= w.face == 3;
-    write_constitutive(dir + "/constitutive.csv", c, dim, profiles->strip_kinematics(),
-                       collision_outputs->strip_stresses(), wall_below, wall_above);
-  }
+  e.set_observer(nullptr);
+  const observe::Frame& last = frame_now(e);
+  for (auto& o : observers) o->write(last, sink);
   std::vector<double> row_time, row_energy;
   for (const auto& r : rows) row_time.push_back(r.time), row_energy.push_back(r.global.kinetic_energy);
-  const double began = std::isfinite(profiles->first_sample_time()) ? profiles->first_sample_time() : c.output.average_start;
-  report_steady_state(row_time, row_energy, began, summary, warnings);
-  if (trajectory) trajectory->finish(warnings);
+  const double first = first_profile_sample();
+  report_steady_state(row_time, row_energy, std::isfinite(first) ? first : c.output.average_start, summary, warnings);
+  for (auto& o : observers) o->finish(sink);
   exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
 }
 

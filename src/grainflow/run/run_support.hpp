@@ -1,4 +1,4 @@
-// Pieces every engine's run driver shares: output schedules on an exact time grid, the progress
+// Pieces every engine's run driver shares: the exact time grid of outputs, the progress
 // line, and final_state.csv.
 #pragma once
 
@@ -10,36 +10,12 @@
 
 #include "grainflow/config/case_config.hpp"
 #include "grainflow/io/json_writer.hpp"
+#include "grainflow/observe/step_schedule.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::run {
 
-// The steps at which something recurring every `interval` seconds happens: the step nearest to each
-// k * interval (k = 1, 2, ...), so output times stay on the requested grid and the last one (at the
-// end of a run whose duration is a multiple of the interval) is not lost. A fixed step count,
-// round(interval / dt), drifts by up to dt/2 per interval and can skip the final output.
-class Schedule {
- public:
-  Schedule(double interval, double dt) : interval_(interval), dt_(dt) { advance(); }
-  // True once per interval, at the first step at or after the next scheduled one.
-  template <class Archive>
-  void serialize(Archive& ar) {
-    ar(k_, next_);
-  }
-  bool due(long step) {
-    if (interval_ <= 0.0 || step < next_) return false;
-    advance();
-    return true;
-  }
-
- private:
-  void advance() {
-    ++k_;
-    next_ = std::max(next_ + 1, static_cast<long>(std::llround(k_ * interval_ / dt_)));
-  }
-  double interval_, dt_;
-  long k_ = 0, next_ = 0;
-};
+using observe::Schedule;
 
 // The k-th time of a grid `interval` apart, k * interval, pulled back onto `end` when rounding puts it
 // just past the end (3 * 0.1 > 0.3): an output due at the end of a run is taken, not lost.

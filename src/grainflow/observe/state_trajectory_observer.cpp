@@ -1,19 +1,20 @@
-#include "grainflow/run/edmd_trajectory_output.hpp"
+#include "grainflow/observe/state_trajectory_observer.hpp"
 
 #include <algorithm>
 #include <limits>
 
 #include "grainflow/core/version.hpp"
 
-namespace grainflow::run {
+namespace grainflow::observe {
 
-EdmdTrajectoryOutput::EdmdTrajectoryOutput(const CaseConfig& c, const edmd::EdmdState& s, const std::string& dir)
-    : file_(dir + "/trajectory.h5"),
-      strips_(c, s),
-      start_(trajectory_start(c)),
-      interval_(edmd_trajectory_interval(c)),
-      requested_(c.trajectory.samples) {
-  const ParticleStore& p = s.particles;
+StateTrajectoryObserver::StateTrajectoryObserver(const RunContext& run, const Frame& s)
+    : file_(run.directory + "/trajectory.h5"),
+      strips_(*run.c, s),
+      start_(trajectory_start(*run.c)),
+      interval_(edmd_trajectory_interval(*run.c)),
+      requested_(run.c->trajectory.samples) {
+  const CaseConfig& c = *run.c;
+  const ParticleStore& p = *s.particles;
   std::vector<std::uint32_t> ids = c.trajectory.particles;
   if (ids.empty())
     for (std::size_t i = 0; i < p.size(); ++i) ids.push_back(p.id[i]);
@@ -42,15 +43,15 @@ EdmdTrajectoryOutput::EdmdTrajectoryOutput(const CaseConfig& c, const edmd::Edmd
   file_.attribute("/", "engine", std::string("edmd"));
   file_.attribute("/", "dimension", static_cast<std::int64_t>(s.dimension));
   file_.attribute("/", "flow_axis", std::int64_t{0});
-  file_.attribute("/", "gradient_axis", std::int64_t{EdmdStrips::kAxis});
+  file_.attribute("/", "gradient_axis", std::int64_t{StripLayout::kAxis});
   file_.attribute("/", "inertia_factor", inertia_factor);
   file_.attribute("/", "particles_total", static_cast<std::int64_t>(p.size()));
   file_.attribute("/", "strip_count", static_cast<std::int64_t>(strips_.count()));
-  file_.attribute("/", "period_y", s.box.periodic[1] ? s.box.length(1) : 0.0);
+  file_.attribute("/", "period_y", s.box->periodic[1] ? s.box->length(1) : 0.0);
   if (s.dimension == 3) {
-    file_.attribute("/", "box_depth", s.box.length(2));
-    file_.attribute("/", "z_lo", s.box.lo[2]);
-    file_.attribute("/", "periodic_z", static_cast<std::int64_t>(s.box.periodic[2] ? 1 : 0));
+    file_.attribute("/", "box_depth", s.box->length(2));
+    file_.attribute("/", "z_lo", s.box->lo[2]);
+    file_.attribute("/", "periodic_z", static_cast<std::int64_t>(s.box->periodic[2] ? 1 : 0));
   }
   file_.attribute("/", "start", start_);
   file_.attribute("/", "interval", interval_);
@@ -75,17 +76,17 @@ EdmdTrajectoryOutput::EdmdTrajectoryOutput(const CaseConfig& c, const edmd::Edmd
   row_w_.assign(3 * followed_, 0.0);
 }
 
-double EdmdTrajectoryOutput::next_time() const {
+double StateTrajectoryObserver::next_time() const {
   if (taken_ >= requested_) return std::numeric_limits<double>::infinity();
   return start_ + static_cast<double>(taken_) * interval_;
 }
 
-void EdmdTrajectoryOutput::sample(const edmd::EdmdState& s) {
-  const ParticleStore& p = s.particles;
+void StateTrajectoryObserver::sample(const Frame& s) {
+  const ParticleStore& p = *s.particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const int k = column_of_id_[p.id[i]];
     if (k < 0) continue;
-    const Vec3 x = s.box.unwrapped(p.position[i], p.image[i]);
+    const Vec3 x = s.box->unwrapped(p.position[i], p.image[i]);
     for (int a = 0; a < 3; ++a) {
       row_x_[3 * k + a] = x[a];
       row_v_[3 * k + a] = p.velocity[i][a];
@@ -93,10 +94,10 @@ void EdmdTrajectoryOutput::sample(const edmd::EdmdState& s) {
     }
   }
   const double t = s.time;
-  const double lo = wall_lo_ >= 0 ? s.walls[wall_lo_].at(t) : s.box.lo[1];
-  const double hi = wall_hi_ >= 0 ? s.walls[wall_hi_].at(t) : s.box.hi[1];
-  const observe::StripGrid grid = strips_.grid_at(s, t);
-  const double strip_lo = grid.lo(), strip_hi = grid.hi(), width = s.box.length(0);
+  const double lo = wall_lo_ >= 0 ? s.walls[wall_lo_].at(t) : s.box->lo[1];
+  const double hi = wall_hi_ >= 0 ? s.walls[wall_hi_].at(t) : s.box->hi[1];
+  const StripGrid grid = strips_.grid_at(s, t);
+  const double strip_lo = grid.lo(), strip_hi = grid.hi(), width = s.box->length(0);
   time_.append(&t);
   position_.append(row_x_.data());
   velocity_.append(row_v_.data());
@@ -109,13 +110,13 @@ void EdmdTrajectoryOutput::sample(const edmd::EdmdState& s) {
   ++taken_;
 }
 
-void EdmdTrajectoryOutput::finish(std::vector<std::string>& warnings) {
+void StateTrajectoryObserver::finish(OutputSink& out) {
   file_.attribute("/", "samples", static_cast<std::int64_t>(taken_));
   if (taken_ < requested_)
-    warnings.push_back("trajectory: the run ended after " + std::to_string(taken_) + " of the " +
+    out.warnings->push_back("trajectory: the run ended after " + std::to_string(taken_) + " of the " +
                        std::to_string(requested_) +
                        " requested samples (trajectory.start, interval and samples need a longer run.duration)");
   file_.commit();
 }
 
-}  // namespace grainflow::run
+}  // namespace grainflow::observe

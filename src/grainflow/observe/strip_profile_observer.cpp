@@ -1,4 +1,4 @@
-#include "grainflow/run/edmd_profiles.hpp"
+#include "grainflow/observe/strip_profile_observer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,9 @@
 
 #include "grainflow/analysis/local_quadratic_fit.hpp"
 #include "grainflow/analysis/open_channel.hpp"
-#include "grainflow/analysis/steady_state.hpp"
 #include "grainflow/io/atomic_file.hpp"
 
-namespace grainflow::run {
+namespace grainflow::observe {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -25,7 +24,7 @@ std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0
 
 }  // namespace
 
-struct EdmdProfiles::Derived {
+struct StripProfileObserver::Derived {
   std::vector<double> du_dy, du_dy_error, s_prose, s_listing, plug;
   double scaling = kNaN;  // Couette (H / U_T)^2, s^2
   // Chute.
@@ -41,29 +40,29 @@ struct EdmdProfiles::Derived {
   double slip_error = kNaN, slip_top_error = kNaN;
 };
 
-EdmdProfiles::EdmdProfiles(const CaseConfig& c, const edmd::EdmdState& s)
-    : c_(c),
-      strips_(c, s),
+StripProfileObserver::StripProfileObserver(const RunContext& run, const Frame& s)
+    : c_(*run.c),
+      strips_(*run.c, s),
       profile_(s.dimension, strips_.count()),
-      interval_(c.output.profile_interval > 0.0 ? c.output.profile_interval : c.output.interval / 10.0),
+      interval_(c_.output.profile_interval > 0.0 ? c_.output.profile_interval : c_.output.interval / 10.0),
       first_sample_(kNaN) {
   for (std::size_t w = 0; w < s.walls.size(); ++w) {
     if (s.walls[w].face == 2) bottom_wall_ = static_cast<int>(w);
     if (s.walls[w].face == 3) top_wall_ = static_cast<int>(w);
   }
-  chute_ = top_wall_ < 0 && s.gravity.x != 0.0 && s.gravity.y < 0.0;
+  chute_ = top_wall_ < 0 && c_.gravity.x != 0.0 && c_.gravity.y < 0.0;
 }
 
-void EdmdProfiles::sample(const edmd::EdmdState& s, long long collisions) {
+void StripProfileObserver::sample(const Frame& s) {
   ++next_;
-  if (!(s.time > c_.output.average_start) || collisions < c_.output.average_start_collisions) return;
-  const observe::StripGrid grid = strips_.grid_at(s, s.time);
-  profile_.sample(s.particles, grid);
+  if (!(s.time > c_.output.average_start) || s.collisions < c_.output.average_start_collisions) return;
+  const StripGrid grid = strips_.grid_at(s, s.time);
+  profile_.sample(*s.particles, grid);
   if (!std::isfinite(first_sample_)) first_sample_ = s.time;
   bottom_ = grid.lo();
   thickness_ = grid.thickness();
   cross_section_ = grid.cross_section();
-  const ParticleStore& p = s.particles;
+  const ParticleStore& p = *s.particles;
   double mass = 0.0, moment = 0.0, momentum = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     mass += p.mass[i];
@@ -78,8 +77,8 @@ void EdmdProfiles::sample(const edmd::EdmdState& s, long long collisions) {
 }
 
 // Per strip: du/dy from the local quadratic fit, S in both forms, the plug-flow flag.
-void EdmdProfiles::derive_strips(const std::vector<observe::StripAverages>& strips, Derived& d) const {
-  using namespace observe::strip;
+void StripProfileObserver::derive_strips(const std::vector<StripAverages>& strips, Derived& d) const {
+  using namespace strip;
   const std::size_t n = strips.size();
   const double radius = 0.5 * c_.species.front().diameter;  // Campbell's R
   std::vector<double> y(n), velocity(n), velocity_error(n);
@@ -97,7 +96,7 @@ void EdmdProfiles::derive_strips(const std::vector<observe::StripAverages>& stri
       y_lo = std::min(y_lo, y[k]), y_hi = std::max(y_hi, y[k]);
     }
   const double mean_shear = y_hi > y_lo ? (u_hi - u_lo) / (y_hi - y_lo) : kNaN;
-  const double shearable = profile_.dimension() == 2 ? observe::kDiscSquarePacking : observe::kSphereCubicPacking;
+  const double shearable = profile_.dimension() == 2 ? kDiscSquarePacking : kSphereCubicPacking;
   for (std::size_t k = 0; k < n; ++k) {
     const auto& x = strips[k].value;
     d.du_dy.push_back(fit[k].slope);
@@ -110,21 +109,21 @@ void EdmdProfiles::derive_strips(const std::vector<observe::StripAverages>& stri
 }
 
 // Gap, U_T, (H/U_T)^2 and the slip at each wall.
-void EdmdProfiles::derive_couette(const std::vector<observe::StripAverages>& strips, Derived& d) const {
+void StripProfileObserver::derive_couette(const std::vector<StripAverages>& strips, Derived& d) const {
   const double samples = static_cast<double>(profile_.samples());
   d.gap = sum_gap_ / samples;
   const double bottom_speed = sum_bottom_speed_ / samples, top_speed = sum_top_speed_ / samples;
   d.speed = top_speed - bottom_speed;
   d.scaling = d.speed != 0.0 ? (d.gap / d.speed) * (d.gap / d.speed) : kNaN;
-  d.slip = strips.front().value[observe::strip::u] - bottom_speed;
-  d.slip_top = top_speed - strips.back().value[observe::strip::u];
-  d.slip_error = strips.front().error[observe::strip::u];
-  d.slip_top_error = strips.back().error[observe::strip::u];
+  d.slip = strips.front().value[strip::u] - bottom_speed;
+  d.slip_top = top_speed - strips.back().value[strip::u];
+  d.slip_error = strips.front().error[strip::u];
+  d.slip_top_error = strips.back().error[strip::u];
 }
 
 // Depth, mass flow, Froude numbers, Appendix A's profile parameters, slip at the bottom.
-void EdmdProfiles::derive_chute(const std::vector<observe::StripAverages>& strips, Derived& d) const {
-  using namespace observe::strip;
+void StripProfileObserver::derive_chute(const std::vector<StripAverages>& strips, Derived& d) const {
+  using namespace strip;
   const double samples = static_cast<double>(profile_.samples());
   const Vec3 g = c_.gravity;
   const double g_magnitude = norm(g), g_normal = -g.y;
@@ -136,9 +135,9 @@ void EdmdProfiles::derive_chute(const std::vector<observe::StripAverages>& strip
     const auto& x = strip.value;
     const double height = strip.centre - bottom_;  // of the strip's centre above the bottom
     column.push_back({height - 0.5 * thickness_, height + 0.5 * thickness_, x[solids_fraction], x[u]});
-    mass += x[observe::strip::mass];
+    mass += x[strip::mass];
     if (!strip.has_mass()) continue;
-    momentum += x[observe::strip::mass] * x[u];
+    momentum += x[strip::mass] * x[u];
     if (height <= d.depth && !(x[u] <= d.max_velocity)) {  // (NaN at first)
       d.max_velocity = x[u];
       d.max_velocity_error = strip.error[u];
@@ -162,14 +161,14 @@ void EdmdProfiles::derive_chute(const std::vector<observe::StripAverages>& strip
     flow.push_back(block[0].momentum / n / cross_section_);
     velocity.push_back(block[0].mass > 0.0 ? block[0].momentum / block[0].mass : kNaN);
   }
-  d.depth_error = 2.0 * observe::blocked_standard_error(height);
-  d.mass_flow_error = observe::blocked_standard_error(flow);
-  d.mean_velocity_error = observe::blocked_standard_error(velocity);
+  d.depth_error = 2.0 * blocked_standard_error(height);
+  d.mass_flow_error = blocked_standard_error(flow);
+  d.mean_velocity_error = blocked_standard_error(velocity);
   // Fr = u / sqrt(g H): relative errors add in quadrature, H's at half weight.
   d.froude_error = std::fabs(d.froude) * std::hypot(d.mean_velocity_error / d.mean_velocity, 0.5 * d.depth_error / d.depth);
 }
 
-std::vector<StripKinematics> EdmdProfiles::strip_kinematics() const {
+std::vector<StripKinematics> StripProfileObserver::strip_kinematics() const {
   const auto strips = profile_.averages();
   Derived d;
   derive_strips(strips, d);
@@ -178,8 +177,11 @@ std::vector<StripKinematics> EdmdProfiles::strip_kinematics() const {
   return result;
 }
 
-void EdmdProfiles::write(const std::string& dir, io::JsonObject& summary, std::vector<std::string>& warnings) const {
-  using namespace observe::strip;
+void StripProfileObserver::write(const Frame&, OutputSink& out) {
+  const std::string& dir = out.directory;
+  io::JsonObject& summary = *out.summary;
+  std::vector<std::string>& warnings = *out.warnings;
+  using namespace strip;
   const auto strips = profile_.averages();
   Derived d;
   derive_strips(strips, d);
@@ -258,9 +260,9 @@ void EdmdProfiles::write(const std::string& dir, io::JsonObject& summary, std::v
     if (chute_)
       out << "# chute: flow depth H = " << d.depth << " m (twice the mass-mean height above the bottom at y = " << bottom_
           << " m), mean velocity " << d.mean_velocity << " m/s, Fr = " << d.froude << "\n";
-    out << "# packing limits of sheared discs (section 3.1.7): triangular " << observe::kDiscTriangularPacking
-        << ", contour-following " << observe::kDiscContourShearPacking << ", square " << observe::kDiscSquarePacking
-        << "; spheres' simple cubic " << observe::kSphereCubicPacking << "\n";
+    out << "# packing limits of sheared discs (section 3.1.7): triangular " << kDiscTriangularPacking
+        << ", contour-following " << kDiscContourShearPacking << ", square " << kDiscSquarePacking
+        << "; spheres' simple cubic " << kSphereCubicPacking << "\n";
     out << "# units: y m, velocities m/s, omega rad/s, *_variance, uv_covariance, rotational_temperature, "
            "granular_temperature, temperature_lan m^2/s^2, temperature and translational_temperature J per particle, "
            "*_scaled 1 (times (H/U_T)^2), du_dy 1/s, S 1; *_error: standard errors by block averaging (nan: too few "
@@ -316,23 +318,4 @@ void EdmdProfiles::write(const std::string& dir, io::JsonObject& summary, std::v
   }
 }
 
-void report_steady_state(std::span<const double> time, std::span<const double> kinetic_energy, double averaging_start,
-                         io::JsonObject& summary, std::vector<std::string>& warnings) {
-  const analysis::SteadyState steady = analysis::detect_steady_state(time, kinetic_energy);
-  summary.number("steady_from", steady.steady_from ? *steady.steady_from : kNaN);
-  // Whether the long-term averages describe the steady flow: it converged before they began.
-  summary.boolean("averaged_when_steady", steady.steady_from && averaging_start >= *steady.steady_from);
-  if (steady.too_short) {
-    warnings.push_back("convergence not judged (Campbell 1982 section 2.5): the kinetic-energy history " + steady.reason +
-                       "; use a smaller output.interval");
-  } else if (!steady.steady_from) {
-    warnings.push_back("the run has not converged (Campbell 1982 section 2.5): the kinetic energy " + steady.reason +
-                       "; long-term averages describe a flow still changing");
-  } else if (averaging_start < *steady.steady_from) {
-    warnings.push_back("the long-term averages began at t = " + format("%g s", averaging_start) +
-                       ", before the kinetic energy became steady at t = " + format("%g s", *steady.steady_from) +
-                       ": raise output.average_start");
-  }
-}
-
-}  // namespace grainflow::run
+}  // namespace grainflow::observe

@@ -7,59 +7,58 @@
 // (H / U_T)^2. Also the convergence check of section 2.5 on the kinetic-energy history.
 #pragma once
 
-#include <span>
 #include <string>
 #include <vector>
 
-#include "grainflow/run/edmd_strips.hpp"
 #include "grainflow/config/case_config.hpp"
-#include "grainflow/edmd/edmd_state.hpp"
-#include "grainflow/io/json_writer.hpp"
 #include "grainflow/observe/block_sums.hpp"
+#include "grainflow/observe/observer.hpp"
+#include "grainflow/observe/run_context.hpp"
+#include "grainflow/observe/strip_layout.hpp"
 #include "grainflow/observe/strip_profile.hpp"
 
-namespace grainflow::run {
+namespace grainflow::observe {
 
 // One strip's long-term averages with the velocity gradient fitted across the strips.
 struct StripKinematics {
-  observe::StripAverages averages;
+  StripAverages averages;
   double du_dy = 0.0, du_dy_error = 0.0;  // 1/s
   bool plug_flow = false;
 };
 
-class EdmdProfiles {
+class StripProfileObserver final : public Observer {
  public:
-  EdmdProfiles(const CaseConfig& c, const edmd::EdmdState& s);
+  StripProfileObserver(const RunContext& run, const Frame& start);
 
+  std::string name() const override { return "profiles"; }
   // The next sample time on the grid k * profile_interval.
-  double next_time() const { return next_ * interval_; }
+  double next_time() const override { return next_ * interval_; }
   // At next_time(): samples the state (synchronized there) once the long-term averages have begun
-  // (time > output.average_start and `collisions` >= output.average_start_collisions).
-  void sample(const edmd::EdmdState& s, long long collisions);
+  // (time > output.average_start and collisions >= output.average_start_collisions).
+  void sample(const Frame& now) override;
   // The time of the first sample taken, or NaN.
   double first_sample_time() const { return first_sample_; }
 
-  // profiles.csv in `dir`, and the scalars into `summary`; `warnings` gets what the user should know.
-  void write(const std::string& dir, io::JsonObject& summary, std::vector<std::string>& warnings) const;
+  // profiles.csv, and the scalars into the summary; the warnings get what the user should know.
+  void write(const Frame& last, OutputSink& out) override;
   // The strips' averages as profiles.csv has them.
   std::vector<StripKinematics> strip_kinematics() const;
   long samples() const { return profile_.samples(); }
 
-  template <class Archive>
-  void serialize(Archive& ar) {
+  void serialize(io::StateArchive& ar) override {
     ar(profile_, next_, first_sample_, sum_height_, sum_gap_, sum_bottom_speed_, sum_top_speed_, bulk_blocks_, bottom_,
        thickness_, cross_section_);
   }
 
  private:
   struct Derived;  // du/dy, S and plug flow per strip; chute and Couette scalars
-  void derive_strips(const std::vector<observe::StripAverages>& strips, Derived& d) const;
-  void derive_couette(const std::vector<observe::StripAverages>& strips, Derived& d) const;
-  void derive_chute(const std::vector<observe::StripAverages>& strips, Derived& d) const;
+  void derive_strips(const std::vector<StripAverages>& strips, Derived& d) const;
+  void derive_couette(const std::vector<StripAverages>& strips, Derived& d) const;
+  void derive_chute(const std::vector<StripAverages>& strips, Derived& d) const;
 
   const CaseConfig& c_;
-  EdmdStrips strips_;
-  observe::StripProfile profile_;
+  StripLayout strips_;
+  StripProfile profile_;
   double interval_;
   long next_ = 1;
   double first_sample_;
@@ -75,15 +74,9 @@ class EdmdProfiles {
       return *this;
     }
   };
-  observe::BlockSums<BulkSample> bulk_blocks_;
+  BlockSums<BulkSample> bulk_blocks_;
   // At the last sample: the strips' low end and thickness, m, and their cross-section, m (3D: m^2).
   double bottom_ = 0.0, thickness_ = 0.0, cross_section_ = 0.0;
 };
 
-// Campbell's convergence check (section 2.5) on the kinetic-energy history: summary.json's
-// `steady_from` (null when the series still drifts, with a warning), and a warning when the long-term
-// averages began before it (`averaging_start`, s).
-void report_steady_state(std::span<const double> time, std::span<const double> kinetic_energy, double averaging_start,
-                         io::JsonObject& summary, std::vector<std::string>& warnings);
-
-}  // namespace grainflow::run
+}  // namespace grainflow::observe

@@ -1,15 +1,14 @@
-#include "grainflow/run/edmd_collision_outputs.hpp"
+#include "grainflow/observe/collision_stress_observer.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <ostream>
 
 #include "grainflow/analysis/savage_jeffrey.hpp"
-#include "grainflow/edmd/edmd_engine.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/analysis/least_squares_line.hpp"
 
-namespace grainflow::run {
+namespace grainflow::observe {
 namespace {
 
 constexpr const char* kAxisNames = "xyz";
@@ -18,80 +17,71 @@ std::string component_name(int a, int b) { return std::string{kAxisNames[a], kAx
 
 }  // namespace
 
-EdmdCollisionOutputs::EdmdCollisionOutputs(const CaseConfig& c, const edmd::EdmdState& s)
-    : c_(c),
-      state_(&s),
-      dim_(s.dimension),
-      strips_(c, s),
-      stress_(strips_.count(), s.box.periodic[EdmdStrips::kAxis] ? s.box.length(EdmdStrips::kAxis) : 0.0),
-      walls_(s.walls) {}
+CollisionStressObserver::CollisionStressObserver(const RunContext& run, const Frame& start)
+    : c_(*run.c),
+      frame_(&start),
+      dim_(start.dimension),
+      strips_(*run.c, start),
+      stress_(strips_.count(), start.box->periodic[StripLayout::kAxis] ? start.box->length(StripLayout::kAxis) : 0.0),
+      walls_(start.walls),
+      interval_(run.c->output.profile_interval > 0.0 ? run.c->output.profile_interval : run.c->output.interval / 10.0) {}
 
-double EdmdCollisionOutputs::wall_area(int wall) const {
-  const int axis = state_->walls[wall].axis;
+double CollisionStressObserver::wall_area(int wall) const {
+  const int axis = frame_->walls[static_cast<std::size_t>(wall)].axis;
   double area = 1.0;
   for (int a = 0; a < dim_; ++a)
-    if (a != axis) area *= state_->box.length(a);
+    if (a != axis) area *= frame_->box->length(a);
   return area;
 }
 
-void EdmdCollisionOutputs::on_pair(const observe::PairCollision& c) {
-  stress_.add(strips_.grid_at(*state_, c.time), c);
+void CollisionStressObserver::on_pair(const PairCollision& c) {
+  stress_.add(strips_.grid_at(*frame_, c.time), c);
   angles_.add(c.normal);
 }
 
-void EdmdCollisionOutputs::on_wall(const observe::WallCollision& c) {
-  stress_.add(strips_.grid_at(*state_, c.time), c);
+void CollisionStressObserver::on_wall(const WallCollision& c) {
+  stress_.add(strips_.grid_at(*frame_, c.time), c);
   walls_.add(c, wall_area(c.wall));
 }
 
-template <int Dim>
-void EdmdCollisionOutputs::sample(edmd::EdmdEngine<Dim>& e) {
-  const edmd::EdmdState& s = e.state();
-  const double t = s.time;
-  const observe::StripGrid grid = strips_.grid_at(s, t);
+void CollisionStressObserver::sample(const Frame& now) {
+  ++next_;
+  frame_ = &now;
+  const double t = now.time;
+  const StripGrid grid = strips_.grid_at(now, t);
   if (!started_) {
-    if (!(t > c_.output.average_start && e.counters().collisions >= c_.output.average_start_collisions)) return;
-    stress_.begin(grid, s.particles, t);
-    e.set_observer(this);
+    if (!(t > c_.output.average_start && now.collisions >= c_.output.average_start_collisions)) return;
+    stress_.begin(grid, *now.particles, t);
     started_ = true;
     last_ = t;
     return;
   }
+  close_interval(now);
+}
+
+void CollisionStressObserver::close_interval(const Frame& now) {
+  const double t = now.time;
   if (!(t > last_)) return;
+  const StripGrid grid = strips_.grid_at(now, t);
   const double duration = t - last_;
-  e.for_each_rolling([&](std::uint32_t i, int w, const Vec3& force) {
-    Vec3 contact = s.particles.position[i];
-    contact[s.walls[w].axis] = s.walls[w].at(t);
-    walls_.add_rolling(w, force, duration, wall_area(w));
-    stress_.add_contact_force(grid, s.particles.position[i], contact, force, duration);
-  });
-  stress_.sample(grid, s.particles, t);
+  const ParticleStore& p = *now.particles;
+  if (now.wall_contacts)
+    now.wall_contacts([&](std::uint32_t i, int w, const Vec3& force) {
+      Vec3 contact = p.position[i];
+      const FaceWall& wall = now.walls[static_cast<std::size_t>(w)];
+      contact[wall.axis] = wall.at(t);
+      walls_.add_rolling(w, force, duration, wall_area(w));
+      stress_.add_contact_force(grid, p.position[i], contact, force, duration);
+    });
+  stress_.sample(grid, p, t);
   walls_.close_interval(duration);
   last_ = t;
 }
 
-template <int Dim>
-void EdmdCollisionOutputs::finish(edmd::EdmdEngine<Dim>& e) {
-  if (started_) sample(e);
-  e.set_observer(nullptr);
-}
-
-template <int Dim>
-void EdmdCollisionOutputs::resume(edmd::EdmdEngine<Dim>& e) {
-  if (started_) e.set_observer(this);
-}
-
-template void EdmdCollisionOutputs::resume(edmd::EdmdEngine<2>&);
-template void EdmdCollisionOutputs::resume(edmd::EdmdEngine<3>&);
-template void EdmdCollisionOutputs::sample(edmd::EdmdEngine<2>&);
-template void EdmdCollisionOutputs::sample(edmd::EdmdEngine<3>&);
-template void EdmdCollisionOutputs::finish(edmd::EdmdEngine<2>&);
-template void EdmdCollisionOutputs::finish(edmd::EdmdEngine<3>&);
-
 // Savage and Jeffrey's S = 2R (du/dy) / sqrt(<v'^2>) for the whole cell: du/dy from a mass-weighted
 // least-squares line through the strips' mean u_x, <v'^2> the mass-weighted mean of P_yy(kinetic)/rho.
 // A single number suits a Couette cell's linear profile; for a chute it is only a rough average.
-double EdmdCollisionOutputs::shear_parameter(const std::vector<observe::StripStress>& strips) const {
+double CollisionStressObserver::shear_parameter(const std::vector<StripStress>& strips) const {
   std::vector<double> y, u, mass;
   double kinetic = 0.0;
   for (const auto& s : strips) {
@@ -105,25 +95,28 @@ double EdmdCollisionOutputs::shear_parameter(const std::vector<observe::StripStr
   if (!(line.sxx > 0.0)) return 0.0;
   const double w = line.weight, shear_rate = line.slope;
   double radius = 0.0;
-  for (double r : state_->particles.radius) radius += r;
-  radius /= std::max<std::size_t>(1, state_->particles.size());
+  for (double r : frame_->particles->radius) radius += r;
+  radius /= std::max<std::size_t>(1, frame_->particles->size());
   return analysis::savage_jeffrey_shear_parameter(radius, shear_rate, kinetic / w);
 }
 
-std::vector<observe::StripStress> EdmdCollisionOutputs::strip_stresses() const {
-  const std::vector<observe::WallLoad> loads = walls_.averages();
+std::vector<StripStress> CollisionStressObserver::strip_stresses() const {
+  const std::vector<WallLoad> loads = walls_.averages();
   Vec3 top_row;  // P_y. at the top of the strips: the top wall's, or zero at a free surface
   for (std::size_t w = 0; w < loads.size(); ++w)
-    if (strips_.between_walls() && state_->walls[w].face == 3) top_row = loads[w].row;
-  return stress_.averages(state_->gravity, top_row);
+    if (strips_.between_walls() && frame_->walls[w].face == 3) top_row = loads[w].row;
+  return stress_.averages(c_.gravity, top_row);
 }
 
-void EdmdCollisionOutputs::write(const std::string& dir, io::JsonObject& summary,
-                                 std::vector<std::string>& warnings) const {
+void CollisionStressObserver::write(const Frame& last, OutputSink& out) {
+  if (started_) close_interval(last);
+  const std::string& dir = out.directory;
+  io::JsonObject& summary = *out.summary;
+  std::vector<std::string>& warnings = *out.warnings;
   if (!started_ || stress_.samples() == 0)
     warnings.push_back("stresses.csv, walls.csv, collision_angles.csv: no averaging interval completed after "
                        "output.average_start (and output.average_start_collisions); their values are nan");
-  const std::vector<observe::WallLoad> loads = walls_.averages();
+  const std::vector<WallLoad> loads = walls_.averages();
   const auto strips = strip_stresses();
   const double s = shear_parameter(strips);
   write_stresses(dir + "/stresses.csv", strips);
@@ -133,7 +126,7 @@ void EdmdCollisionOutputs::write(const std::string& dir, io::JsonObject& summary
   summary.integer("stress_samples", stress_.samples());
   summary.number("stress_averaging_time", stress_.elapsed());
   for (std::size_t w = 0; w < loads.size(); ++w) {
-    const std::string face = kFaceNames[state_->walls[w].face];
+    const std::string face = kFaceNames[frame_->walls[w].face];
     summary.number("wall_normal_stress_" + face, loads[w].normal_stress);
     summary.number("wall_normal_stress_error_" + face, loads[w].normal_stress_error);
     summary.number("wall_shear_stress_" + face, loads[w].shear_stress);
@@ -143,7 +136,7 @@ void EdmdCollisionOutputs::write(const std::string& dir, io::JsonObject& summary
   summary.number("savage_jeffrey_S", s);
 }
 
-void EdmdCollisionOutputs::write_stresses(const std::string& path, const std::vector<observe::StripStress>& strips) const {
+void CollisionStressObserver::write_stresses(const std::string& path, const std::vector<StripStress>& strips) const {
   const bool walls = strips_.between_walls();
   const char* stress = dim_ == 2 ? "N/m" : "Pa";
   const char* measure = dim_ == 2 ? "m^2" : "m^3";
@@ -180,7 +173,7 @@ void EdmdCollisionOutputs::write_stresses(const std::string& path, const std::ve
   });
 }
 
-void EdmdCollisionOutputs::write_walls(const std::string& path, const std::vector<observe::WallLoad>& loads) const {
+void CollisionStressObserver::write_walls(const std::string& path, const std::vector<WallLoad>& loads) const {
   const char* stress = dim_ == 2 ? "N/m" : "Pa";
   const char* area = dim_ == 2 ? "m" : "m^2";
   io::write_atomically(path, [&](std::ostream& out) {
@@ -191,9 +184,9 @@ void EdmdCollisionOutputs::write_walls(const std::string& path, const std::vecto
     out << "wall,axis,position,area,collisions,normal_stress,normal_stress_error,shear_stress,shear_stress_error,"
            "friction,impulse_angle_deg,rolling_normal_stress,rolling_shear_stress,collision_rate,dissipation_rate\n";
     for (std::size_t w = 0; w < loads.size(); ++w) {
-      const auto& wall = state_->walls[w];
+      const auto& wall = frame_->walls[w];
       const auto& l = loads[w];
-      out << kFaceNames[wall.face] << ',' << kAxisNames[wall.axis] << ',' << wall.at(state_->time) << ','
+      out << kFaceNames[wall.face] << ',' << kAxisNames[wall.axis] << ',' << wall.at(frame_->time) << ','
           << wall_area(static_cast<int>(w)) << ',' << l.collisions << ',' << l.normal_stress << ',' << l.normal_stress_error
           << ',' << l.shear_stress << ',' << l.shear_stress_error << ',' << l.friction << ',' << l.impulse_angle_deg << ','
           << l.rolling_normal_stress << ',' << l.rolling_shear_stress << ',' << l.collision_rate << ','
@@ -202,7 +195,7 @@ void EdmdCollisionOutputs::write_walls(const std::string& path, const std::vecto
   });
 }
 
-void EdmdCollisionOutputs::write_angles(const std::string& path, double shear_parameter) const {
+void CollisionStressObserver::write_angles(const std::string& path, double shear_parameter) const {
   io::write_atomically(path, [&](std::ostream& out) {
     out << "# units: theta_deg degrees (bin centre; line of centres from the flow direction x towards y, folded "
            "into [0, 180)), density 1/rad, count collisions, savage_jeffrey 1/rad at S = "
@@ -216,4 +209,4 @@ void EdmdCollisionOutputs::write_angles(const std::string& path, double shear_pa
   });
 }
 
-}  // namespace grainflow::run
+}  // namespace grainflow::observe

@@ -9,17 +9,17 @@
 #include <cmath>
 
 #include "grainflow/config/case_config.hpp"
-#include "grainflow/edmd/edmd_state.hpp"
 #include "grainflow/analysis/strip_grid.hpp"
+#include "grainflow/observe/observer.hpp"
 
-namespace grainflow::run {
+namespace grainflow::observe {
 
-class EdmdStrips {
+class StripLayout {
  public:
   static constexpr int kAxis = 1;  // y: the velocity gradient (flow along x)
   static constexpr int kMaxStrips = 1000;  // block-averaged sums keep up to 512 copies of every strip
 
-  EdmdStrips(const CaseConfig& c, const edmd::EdmdState& s) : dimension_(s.dimension) {
+  StripLayout(const CaseConfig& c, const Frame& s) : dimension_(s.dimension) {
     for (std::size_t w = 0; w < s.walls.size(); ++w) {
       if (s.walls[w].face == 2) bottom_ = static_cast<int>(w);
       if (s.walls[w].face == 3) top_ = static_cast<int>(w);
@@ -32,16 +32,16 @@ class EdmdStrips {
     count_ = static_cast<int>(std::clamp(std::round(extent / thickness), 1.0, static_cast<double>(kMaxStrips)));
     if (count_ == kMaxStrips) thickness = extent / count_;
     // Periodic along y (Lees-Edwards): the strips span the box exactly, so each end meets the other.
-    if (top_ < 0) top_height_ = s.box.periodic[kAxis] ? s.box.hi[kAxis] : lo + count_ * thickness;
+    if (top_ < 0) top_height_ = s.box->periodic[kAxis] ? s.box->hi[kAxis] : lo + count_ * thickness;
   }
 
   // The strips at time t (a Couette cell's walls and periodic width as they are then).
-  observe::StripGrid grid_at(const edmd::EdmdState& s, double t) const {
+  StripGrid grid_at(const Frame& s, double t) const {
     const auto [lo, hi] = bounds(s, t);
-    double cross_section = s.box.length(0);
-    if (dimension_ == 3) cross_section *= s.box.length(2);
-    observe::StripGrid grid(dimension_, kAxis, lo, hi, count_, cross_section);
-    if (top_ < 0 && bottom_ < 0 && s.box.periodic[kAxis]) grid.set_period(s.box.length(kAxis));
+    double cross_section = s.box->length(0);
+    if (dimension_ == 3) cross_section *= s.box->length(2);
+    StripGrid grid(dimension_, kAxis, lo, hi, count_, cross_section);
+    if (top_ < 0 && bottom_ < 0 && s.box->periodic[kAxis]) grid.set_period(s.box->length(kAxis));
     return grid;
   }
 
@@ -49,8 +49,8 @@ class EdmdStrips {
   int count() const { return count_; }
 
  private:
-  std::pair<double, double> bounds(const edmd::EdmdState& s, double t) const {
-    const double lo = bottom_ >= 0 ? s.walls[bottom_].at(t) : s.box.lo[kAxis];
+  std::pair<double, double> bounds(const Frame& s, double t) const {
+    const double lo = bottom_ >= 0 ? s.walls[bottom_].at(t) : s.box->lo[kAxis];
     const double hi = top_ >= 0 ? s.walls[top_].at(t) : top_height_;
     return {lo, hi};
   }
@@ -61,4 +61,4 @@ class EdmdStrips {
   double top_height_ = 0.0;     // m, the top of the strips without a top wall
 };
 
-}  // namespace grainflow::run
+}  // namespace grainflow::observe

@@ -1,4 +1,4 @@
-#include "grainflow/run/edmd_constitutive_output.hpp"
+#include "grainflow/observe/constitutive_observer.hpp"
 
 #include <cmath>
 #include <limits>
@@ -6,17 +6,17 @@
 #include "grainflow/analysis/constitutive_functions.hpp"
 #include "grainflow/io/atomic_file.hpp"
 
-namespace grainflow::run {
+namespace grainflow::observe {
 namespace {
 
-constexpr int YX = 3, YY = 4;  // observe::Tensor3 indices a * 3 + b
+constexpr int YX = 3, YY = 4;  // Tensor3 indices a * 3 + b
 
 }  // namespace
 
 void write_constitutive(const std::string& path, const CaseConfig& c, int dimension,
-                        const std::vector<StripKinematics>& strips, const std::vector<observe::StripStress>& stresses,
+                        const std::vector<StripKinematics>& strips, const std::vector<StripStress>& stresses,
                         bool wall_below, bool wall_above) {
-  using namespace observe::strip;
+  using namespace strip;
   const double density = c.species.front().density;  // rho_p: mass per disc area (2D) or sphere volume (3D)
   const double radius = 0.5 * c.species.front().diameter;
   io::write_atomically(path, [&](std::ostream& out) {
@@ -79,4 +79,11 @@ void write_constitutive(const std::string& path, const CaseConfig& c, int dimens
   });
 }
 
-}  // namespace grainflow::run
+void ConstitutiveObserver::write(const Frame& last, OutputSink& out) {
+  if (!out.writes || profiles_->samples() == 0) return;
+  const bool wall_below = last.walls.on_face(2) >= 0, wall_above = last.walls.on_face(3) >= 0;
+  write_constitutive(out.directory + "/constitutive.csv", *c_, last.dimension, profiles_->strip_kinematics(),
+                     stresses_->strip_stresses(), wall_below, wall_above);
+}
+
+}  // namespace grainflow::observe

@@ -9,11 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "grainflow/run/edmd_profiles.hpp"
 #include "grainflow/config/case_config.hpp"
 #include "grainflow/observe/collision_stress.hpp"
+#include "grainflow/observe/collision_stress_observer.hpp"
+#include "grainflow/observe/strip_profile_observer.hpp"
 
-namespace grainflow::run {
+namespace grainflow::observe {
 
 // Which strips go into the table: not the strips whose particles touch a wall (a wall's impulses
 // lie in them), not nearly empty ones, and, for f, not plugs and not where du/dy is so poorly
@@ -25,7 +26,25 @@ inline constexpr double kConstitutiveMaximumRelativeError = 0.5;
 // `strips` and `stresses` come from the same strip grid (index k is the same strip in both).
 // `wall_below` / `wall_above`: whether the first / last strip lies against a wall.
 void write_constitutive(const std::string& path, const CaseConfig& c, int dimension,
-                        const std::vector<StripKinematics>& strips, const std::vector<observe::StripStress>& stresses,
+                        const std::vector<StripKinematics>& strips, const std::vector<StripStress>& stresses,
                         bool wall_below, bool wall_above);
 
-}  // namespace grainflow::run
+// constitutive.csv from the strip profiles and the collision stresses of the same run, once both
+// are written (it samples nothing itself).
+class ConstitutiveObserver final : public Observer {
+ public:
+  ConstitutiveObserver(const RunContext& run, const StripProfileObserver& profiles, const CollisionStressObserver& stresses)
+      : c_(run.c), profiles_(&profiles), stresses_(&stresses) {}
+
+  std::string name() const override { return "constitutive"; }
+  void sample(const Frame&) override {}
+  void serialize(io::StateArchive&) override {}
+  void write(const Frame& last, OutputSink& out) override;
+
+ private:
+  const CaseConfig* c_;
+  const StripProfileObserver* profiles_;
+  const CollisionStressObserver* stresses_;
+};
+
+}  // namespace grainflow::observe

@@ -1,0 +1,39 @@
+// convection.csv and convection_phases.csv of a soft-sphere run ([field], Lan 1994 Chapter 5):
+// the long-term velocity field in cells of a vertical plane, and the same in bins of the floor's
+// phase, with the mean convection speed (Table 5.1) in summary.json.
+#pragma once
+
+#include "grainflow/observe/observer.hpp"
+#include "grainflow/observe/run_context.hpp"
+#include "grainflow/observe/velocity_field.hpp"
+
+namespace grainflow::observe {
+
+class ConvectionObserver final : public Observer {
+ public:
+  explicit ConvectionObserver(const RunContext& run);
+
+  std::string name() const override { return "field"; }
+  void sample(const Frame& now) override;
+  void serialize(io::StateArchive& ar) override { ar(field_, next_); }
+  void save_portable(io::StateArchive& ar) override {
+    VelocityField whole = field_;
+    if (several_ranks()) whole.sum_over_ranks(run_.ranks);
+    ar(whole, next_);
+  }
+  void load_portable(io::StateArchive& ar, bool keeper) override {
+    serialize(ar);
+    if (!keeper) field_.clear_sums();
+  }
+  void write(const Frame& last, OutputSink& out) override;
+
+ private:
+  bool several_ranks() const { return run_.comm != nullptr && run_.comm->size() > 1; }
+
+  RunContext run_;
+  VelocityField field_;
+  double start_ = 0.0, interval_ = 0.0;
+  long next_ = 0;
+};
+
+}  // namespace grainflow::observe

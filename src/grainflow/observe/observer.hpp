@@ -1,0 +1,93 @@
+// The one interface through which a run measures and writes, whichever engine runs it. A run
+// driver builds the case's observers (run/observer_registry.cpp), hands each a Frame, the engine's
+// state seen without its engine, and at the end an OutputSink to write through. An observer keeps
+// its own schedule: a soft-sphere run offers it every step, an event-driven run stops at every
+// next_time() it asks for. It sums over MPI ranks itself (RankReduce) where each rank holds a share,
+// and carries its state through checkpoints. Adding an output is one observer file, its registry
+// line and its test.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "grainflow/core/face_wall.hpp"
+#include "grainflow/core/periodic_box.hpp"
+#include "grainflow/io/json_writer.hpp"
+#include "grainflow/io/state_archive.hpp"
+#include "grainflow/observe/collision_observer.hpp"
+#include "grainflow/observe/coordination.hpp"
+#include "grainflow/particles/particle_store.hpp"
+
+namespace grainflow::observe {
+
+inline constexpr double kNoSampleTime = std::numeric_limits<double>::infinity();
+
+// What an observer sees: the run's state at one time. The driver keeps one Frame for the whole
+// run, its pointers into the engine's state (which never moves), and refreshes the clock before
+// each call, so an observer may keep a pointer to it (a collision observer reads the walls between
+// samples).
+struct Frame {
+  int dimension = 3;
+  double time = 0.0;          // s
+  double time_step = 0.0;     // s, the soft-sphere step that ended at `time`; 0 in an event-driven run
+  long step = 0;              // soft-sphere steps taken
+  long long collisions = 0;   // collisions so far (event-driven: binary particle collisions)
+  const ParticleStore* particles = nullptr;  // this rank's, current at `time`
+  const PeriodicBox* box = nullptr;
+  FaceWalls walls;
+  // Per particle of `particles`, what it touches now (soft spheres; a pass over the contacts).
+  std::function<std::vector<Coordination>()> coordination;
+  // Calls visit(i, wall, force) for each particle pressing on a wall between collisions (an
+  // event-driven particle rolling on it), with the force the wall exerts.
+  using WallContactVisit = std::function<void(std::uint32_t, int, const Vec3&)>;
+  std::function<void(const WallContactVisit&)> wall_contacts;
+};
+
+// Where an observer writes at the end: files in `directory` (on rank 0 only: `writes`), keys of
+// summary.json and the warnings the user should read.
+struct OutputSink {
+  std::string directory;
+  bool writes = true;
+  io::JsonObject* summary = nullptr;
+  std::vector<std::string>* warnings = nullptr;
+};
+
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  // Its case table or output file, for checkpoint tags and messages.
+  virtual std::string name() const = 0;
+  // The next time it wants a frame (an event-driven run advances there); kNoSampleTime: none.
+  virtual double next_time() const { return kNoSampleTime; }
+  virtual void sample(const Frame& now) = 0;
+  // Non-null while it wants every collision reported (the event-driven engine calls it).
+  virtual CollisionObserver* collision_observer() { return nullptr; }
+
+  // Checkpoints: the state it accumulated; the case rebuilds the rest.
+  virtual void serialize(io::StateArchive& ar) = 0;
+  // The same for a restart on another MPI rank count: the shares each rank holds summed (collective);
+  // on reading, `keeper` (one rank) keeps the sums and the others start their shares from zero.
+  virtual void save_portable(io::StateArchive& ar) { serialize(ar); }
+  virtual void load_portable(io::StateArchive& ar, bool keeper) {
+    (void)keeper;
+    serialize(ar);
+  }
+  // Files streamed while running (HDF5) are copied into, and resumed from, a checkpoint's folder.
+  virtual void save_streams(const std::string& folder) { (void)folder; }
+  virtual void resume_streams(const std::string& folder) { (void)folder; }
+
+  // Mid-run, every so often: what it has written so far, brought up to date (collective).
+  virtual void flush(OutputSink& out) { (void)out; }
+  // Sampling is over (the end, an interruption or a failure): streams committed, short ones warned of.
+  virtual void finish(OutputSink& out) { (void)out; }
+  // The files and summary keys, from `last`, the final state. Collective on several ranks.
+  virtual void write(const Frame& last, OutputSink& out) {
+    (void)last;
+    (void)out;
+  }
+};
+
+}  // namespace grainflow::observe
