@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "grainflow/config/contact_schema.hpp"
+#include "grainflow/config/face_kinds.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/config/toml_reader.hpp"
 #include "grainflow/config/particle_csv.hpp"
@@ -16,11 +17,8 @@ namespace grainflow {
 namespace {
 
 FaceKind parse_face_kind(TomlReader& reader, const std::string& key, const std::string& text) {
-  if (text == "periodic") return FaceKind::periodic;
-  if (text == "wall") return FaceKind::wall;
-  if (text == "bumpy") return FaceKind::bumpy;
-  if (text == "open") return FaceKind::open;
-  reader.fail(key, "unknown boundary '" + text + "' (valid: periodic, wall, bumpy, open)");
+  if (const auto kind = face_kind_named(text)) return *kind;
+  reader.fail(key, "unknown boundary '" + text + "' (valid: " + face_kind_names() + ")");
 }
 
 void read_boundaries(TomlReader& domain, DomainConfig& out) {
@@ -31,7 +29,7 @@ void read_boundaries(TomlReader& domain, DomainConfig& out) {
     const std::string key = std::string("boundary.") + axes[axis];
     FaceKind lo = FaceKind::periodic, hi = FaceKind::periodic;
     if (!node) {
-      domain.fail(key, "is required (periodic, wall, bumpy or open)");
+      domain.fail(key, "is required (" + face_kind_names("or") + ")");
     } else if (auto s = node->as_string()) {
       lo = hi = parse_face_kind(domain, key, s->get());
     } else if (auto a = node->as_array(); a && a->size() == 2 && a->get(0)->is_string() && a->get(1)->is_string()) {

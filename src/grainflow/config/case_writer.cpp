@@ -1,4 +1,5 @@
 #include "grainflow/config/case_writer.hpp"
+#include "grainflow/config/face_kinds.hpp"
 
 #include <filesystem>
 #include <fmt/format.h>
@@ -46,15 +47,6 @@ std::string list(const std::vector<T>& items, Format format) {
   return out + "]";
 }
 
-const char* face_kind(FaceKind k) {
-  switch (k) {
-    case FaceKind::periodic: return "periodic";
-    case FaceKind::wall: return "wall";
-    case FaceKind::bumpy: return "bumpy";
-    case FaceKind::open: return "open";
-  }
-  return "periodic";
-}
 
 // One `key = value` line; the value already in TOML form.
 struct Out {
@@ -75,8 +67,8 @@ void write_domain(Out& o, const CaseConfig& c) {
   o.key("hi", vec(c.domain.hi));
   std::string boundary = "{ ";
   for (int axis = 0; axis < 3; ++axis)
-    boundary += std::string(axis ? ", " : "") + "xyz"[axis] + " = [" + quoted(face_kind(c.domain.faces[2 * axis])) + ", " +
-                quoted(face_kind(c.domain.faces[2 * axis + 1])) + "]";
+    boundary += std::string(axis ? ", " : "") + "xyz"[axis] + " = [" + quoted(face_kind_name(c.domain.faces[2 * axis])) + ", " +
+                quoted(face_kind_name(c.domain.faces[2 * axis + 1])) + "]";
   o.key("boundary", boundary + " }");
 }
 

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "grainflow/core/error.hpp"
+#include "grainflow/config/face_kinds.hpp"
 #include "grainflow/config/species_sequence.hpp"
 #include "grainflow/dem/bump_lattice.hpp"
 #include "grainflow/dem/dem_state.hpp"
@@ -36,7 +37,7 @@ void add_particle(ParticleStore& p, const SpeciesConfig& species, int species_in
 void add_walls(const CaseConfig& c, DemState& s) {
   for (int f = 0; f < 6; ++f) {
     const FaceKind kind = c.domain.faces[f];
-    if (kind != FaceKind::wall && kind != FaceKind::bumpy) continue;
+    if (!holds_wall(kind)) continue;
     const WallConfig& w = c.walls[f];
     FlatWall wall;
     wall.face = f;

@@ -8,9 +8,17 @@
 #include <string>
 
 #include "grainflow/config/case_checks.hpp"
+#include "grainflow/config/face_kinds.hpp"
 
 namespace grainflow::edmd {
 namespace {
+
+std::string event_driven_kinds() {
+  std::string out;
+  for (const auto& k : kFaceKinds)
+    if (k.event_driven) out += std::string(out.empty() ? "" : ", ") + k.name;
+  return out;
+}
 
 using case_checks::fail;
 using case_checks::fmt_number;
@@ -42,7 +50,9 @@ void validate_edmd_case(const CaseConfig& c) {
     if (c.domain.periodic(axis) && c.domain.length(axis) < 2.0 * max_diameter)
       fail(c, "domain.hi", std::string("periodic axis ") + "xyz"[axis] + " must be at least two diameters long");
   for (int f = 0; f < 6; ++f)
-    if (c.domain.faces[f] == FaceKind::bumpy) fail(c, "domain.boundary", "bumpy walls are a DEM feature");
+    if (!face_kind_entry(c.domain.faces[f]).event_driven)
+      fail(c, "domain.boundary", std::string(face_kind_name(c.domain.faces[f])) + " faces (" + kFaceNames[f] +
+                                     ") are a soft-sphere (DEM) feature; the event-driven engine takes " + event_driven_kinds());
   // Strips thinner than a radius would only split each particle into more pieces (as for dem).
   if (c.output.zone_thickness > 0.0 && c.output.zone_thickness < 0.5 * max_diameter)
     fail(c, "output.zone_thickness", "must be at least the radius of the largest particle");

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "grainflow/core/error.hpp"
+#include "grainflow/config/face_kinds.hpp"
 #include "grainflow/config/species_sequence.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 
@@ -197,7 +198,7 @@ EdmdState build_edmd_state(const CaseConfig& c) {
   s.contact_duration = c.collision.contact_duration;
   s.rolling_speed = c.collision.rolling_speed;
   for (int f = 0; f < 6; ++f) {
-    if (c.domain.faces[f] != FaceKind::wall || face_axis(f) >= s.dimension) continue;
+    if (!holds_wall(c.domain.faces[f]) || face_axis(f) >= s.dimension) continue;
     const WallConfig& w = c.walls[f];
     EdmdWall wall;
     wall.face = f;
