@@ -27,8 +27,10 @@ demo: deps
 	$(GRAINFLOW) plot runs/demo
 	@echo "demo: figures in runs/demo/ (profiles.png, mass_below.png, timeseries.png, snapshots_phases.png)"
 
-# Release build: every test. Debug build (AddressSanitizer + UBSan): the unit tests.
-test: release debug
+# Release build: every test. Debug build (AddressSanitizer + UBSan): the unit tests, built alone.
+test: release
+	cmake --preset debug
+	cmake --build --preset debug -j $(JOBS) --target unit_tests
 	ctest --preset release -j $(JOBS)
 	ctest --preset debug -L unit -j $(JOBS)
 
