@@ -27,6 +27,7 @@
 #include "grainflow/edmd/event_counters.hpp"
 #include "grainflow/edmd/event_queue.hpp"
 #include "grainflow/edmd/fault_checks.hpp"
+#include "grainflow/edmd/flight.hpp"
 #include "grainflow/edmd/free_flight.hpp"
 #include "grainflow/edmd/lees_edwards.hpp"
 #include "grainflow/edmd/neighbor_lists.hpp"
@@ -35,9 +36,6 @@
 #include "grainflow/edmd/tc_model.hpp"
 
 namespace grainflow::edmd {
-
-// Relative speeds below this fraction of the particles' speeds are round-off (see approaching()).
-inline constexpr double kVelocityResolution = 1e-10;
 
 template <int Dim>
 class EdmdEngine {
@@ -188,17 +186,6 @@ class EdmdEngine {
     std::uint32_t partner_count = 0; // partner's trajectory counter when predicted
   };
 
-  // What predicting and advancing a particle reads, in one cache line: an event at 10^6 particles
-  // looks at a few dozen partners at random places in memory, one line each instead of one per array.
-  struct alignas(64) Flight {
-    Vec3 x;                   // m, position at `clock`
-    double clock = 0.0;       // s, the particle's own time (lazy advance)
-    Vec3 v;                   // m/s, velocity at `clock`
-    std::uint32_t count = 0;  // trajectory counter: changes whenever the velocity jumps
-    std::int32_t next = -1;   // next particle in the same cell, -1 at the end
-  };
-  static_assert(sizeof(Flight) == 64);
-
   void load_flights() {
     ParticleStore& p = s_.particles;
     flight_.assign(p.size(), Flight{});
@@ -334,67 +321,12 @@ class EdmdEngine {
         }
       }
     };
-    // The neighboring cells are listed first and the first particle of each fetched ahead, so the
-    // memory reads for all of them overlap instead of following one another.
-    struct Visit {
-      int cell, sx, sy, sz;
-    };
-    std::array<Visit, 27> visits;
-    int visit_count = 0;
-    const int span_z = Dim == 3 ? 1 : 0;
-    for (int dz = -span_z; dz <= span_z; ++dz) {
-      int cz = ci[2] + dz, sz = 0;
-      if (!grid_.wrap(s_.box, 2, cz, sz)) continue;
-      for (int dy = -1; dy <= 1; ++dy) {
-        int cy = ci[1] + dy, sy = 0;
-        if (!grid_.wrap(s_.box, 1, cy, sy)) continue;
-        if (sy != 0 && images_.sliding()) {
-          // Across a Lees–Edwards boundary the image row slides: its x offset is sy * delta(t) and
-          // it moves at sy * U. Every cell of that row is searched, so no partner is missed.
-          const Vec3 shift{sy * shear_offset(now), sy * s_.box.length(1), sz * s_.box.length(2)};
-          const Vec3 shift_velocity{sy * images_.shear_velocity, 0.0, 0.0};
-          for (int cx = 0; cx < grid_.count(0); ++cx) consider(grid_.index(cx, cy, cz), shift, shift_velocity, true);
-          continue;
-        }
-        for (int dx = -1; dx <= 1; ++dx) {
-          int cx = ci[0] + dx, sx = 0;
-          if (!grid_.wrap(s_.box, 0, cx, sx)) continue;
-          visits[visit_count++] = {grid_.index(cx, cy, cz), sx, sy, sz};
-        }
-      }
-    }
-    for (int k = 0; k < visit_count; ++k)
-      if (const int first = grid_.head(visits[k].cell); first >= 0) __builtin_prefetch(&flight_[first]);
-    for (int k = 0; k < visit_count; ++k) {
-      const Visit& v = visits[k];
-      const Vec3 shift{v.sx * s_.box.length(0), v.sy * s_.box.length(1), v.sz * s_.box.length(2)};
-      const Vec3 shift_velocity{v.sx * servo_.width_rate(), 0.0, 0.0};  // images move with the width rate
-      consider(v.cell, shift, shift_velocity, false);
-    }
+    grid_.for_each_cell_around(s_.box, ci, flight_, images_, now, servo_.width_rate(), consider);
     earliest_wall(i, xi, vi, ai, ri, best, e);
-    for (int a = 0; a < Dim; ++a) {
-      const bool periodic = s_.box.periodic[a];
-      const int cells = grid_.count(a);
-      if (cells == 1 && !periodic) continue;
-      const double face_lo = s_.box.lo[a] + ci[a] * grid_.width(a);
-      const double face_hi = ci[a] + 1 == cells ? s_.box.hi[a] : face_lo + grid_.width(a);
-      // Faces along x stretch with the periodic width (Couette servo); elsewhere they stand still.
-      const double rate_lo = a == 0 ? servo_.width_rate() * ci[a] / cells : 0.0;
-      const double rate_hi = a == 0 ? servo_.width_rate() * (ci[a] + 1) / cells : 0.0;
-      if (ci[a] > 0 || periodic) {
-        const double t = closing_time(xi[a] - face_lo, vi[a] - rate_lo, ai[a]);
-        if (t < best) {
-          best = t;
-          e = Event{Kind::cell, static_cast<std::int8_t>(a * 2), 0, 0};
-        }
-      }
-      if (ci[a] + 1 < cells || periodic) {
-        const double t = closing_time(face_hi - xi[a], rate_hi - vi[a], -ai[a]);
-        if (t < best) {
-          best = t;
-          e = Event{Kind::cell, static_cast<std::int8_t>(a * 2 + 1), 0, 0};
-        }
-      }
+    int face = 0;
+    if (const double t = grid_.exit_time(s_.box, ci, xi, vi, ai, servo_.width_rate(), face); t < best) {
+      best = t;
+      e = Event{Kind::cell, static_cast<std::int8_t>(face), 0, 0};
     }
     event_[i] = e;
     event_time_[i] = now + best;
@@ -409,46 +341,18 @@ class EdmdEngine {
     const double ri = radius(static_cast<int>(i));
     Event e{Kind::expiry, 0, 0, 0};
     double best = lists_.expiry_time(i, xi, vi);
-    const double speed_i = norm(vi);
     const std::span<const std::uint32_t> list = lists_.neighbors(i);
-    const std::uint32_t count = static_cast<std::uint32_t>(list.size());
-    const bool inside = lists_.sees_no_images(i);
-    for (std::uint32_t k = 0; k < count; ++k) __builtin_prefetch(&flight_[list[k]]);
-    auto separation = [&](const Flight& fj) {
-      const Vec3 xj = fj.x + (now - fj.clock) * fj.v;
-      return inside ? xi - xj : lists_.nearest(xi - xj);
-    };
+    for (std::uint32_t j : list) __builtin_prefetch(&flight_[j]);
     if (!rolling_.any() && uniform_radius_ > 0.0) {
-      // Two passes: the first, without branches on the (random) signs, keeps the neighbours that
-      // approach and could touch before the best time so far (the test of contact_time_before(),
-      // against the shell expiry); the second solves the few kept exactly.
-      const double sigma2 = 4.0 * uniform_radius_ * uniform_radius_;
-      const double horizon = -2.0 * best * (1.0 + 1e-9);
-      std::uint32_t* kept = lists_.scratch();
-      std::uint32_t m = 0;
-      for (std::uint32_t k = 0; k < count; ++k) {
-        const Flight& fj = flight_[list[k]];
-        const Vec3 d = separation(fj);
-        const double b = dot(d, vi - fj.v);
-        const double c = norm2(d) - sigma2;
-        kept[m] = list[k];
-        m += (b < 0.0) & (c <= b * horizon);
-      }
-      for (std::uint32_t q = 0; q < m; ++q) {
-        const std::uint32_t j = kept[q];
+      if (const std::uint32_t j = lists_.first_contact(i, flight_, xi, vi, now, best); j != lists_.kNone)
+        e = Event{Kind::pair, 0, j, flight_[j].count};
+    } else {  // sizes differ, or particles roll
+      const double speed_i = norm(vi);
+      const bool inside = lists_.sees_no_images(i);
+      for (std::uint32_t j : list) {
         const Flight& fj = flight_[j];
-        auto floor = [&] { return kVelocityResolution * (speed_i + norm(fj.v)); };
-        const double t = contact_time_before(separation(fj), vi - fj.v, 2.0 * uniform_radius_, best, floor);
-        if (t < best) {
-          best = t;
-          e = Event{Kind::pair, 0, j, fj.count};
-        }
-      }
-    } else {
-      for (std::uint32_t k = 0; k < count; ++k) {
-        const std::uint32_t j = list[k];
-        const Flight& fj = flight_[j];
-        const Vec3 d = separation(fj);
+        const Vec3 xj = fj.x + (now - fj.clock) * fj.v;
+        const Vec3 d = inside ? xi - xj : lists_.nearest(xi - xj);
         const Vec3 dv = vi - fj.v;
         auto floor = [&] { return kVelocityResolution * (speed_i + norm(fj.v)); };
         const double t = (!rolling_.any() || (!rolls(i) && !rolls(j)))
@@ -560,7 +464,6 @@ class EdmdEngine {
   Vec3 image_velocity(std::uint32_t i, std::uint32_t j) const {
     return images_.image_velocity(s_.box, servo_.width_rate(), flight_[i].x, flight_[j].x, s_.time);
   }
-  double shear_offset(double t) const { return images_.offset(s_.box.length(0), t); }
 
   // The servo's update (couette_servo.hpp): new wall speeds from the measured stress, every
   // particle brought to now before the walls change, the width and grid after them, every
@@ -699,7 +602,7 @@ class EdmdEngine {
   StallDetector stall_;
   LeesEdwardsImages images_;
   CouetteServo servo_;  // the Couette cell's walls and width (also the width law without [servo])
-  std::vector<Flight> flight_;
+  std::vector<Flight> flight_;  // flight.hpp
   bool use_lists_ = false;  // the neighbour-list path is in use
   NeighborLists<Dim> lists_;
   RollingWalls rolling_;

@@ -137,9 +137,6 @@ class NeighborLists {
   // The particles i can meet before its list expires.
   std::span<const std::uint32_t> neighbors(std::uint32_t i) const { return {list_of(i) + 1, list_of(i)[0]}; }
 
-  // Room for any list (list_cap_ words): a prediction's scratch.
-  std::uint32_t* scratch() { return kept_.data(); }
-
   // True when no particle that i can meet is seen through a periodic face (as of i's last rebuild):
   // separations need no nearest-image rounding.
   bool sees_no_images(std::uint32_t i) const { return inside_[i] != 0; }
@@ -148,6 +145,50 @@ class NeighborLists {
   Vec3 nearest(Vec3 d) const {
     for (int a = 0; a < Dim; ++a) d[a] -= period_[a] * std::nearbyint(d[a] * inv_period_[a]);
     return d;
+  }
+
+  // The list path's common case, equal spheres all flying straight: the listed neighbour that i, at
+  // xi moving at vi `now`, touches first before `best` (which then becomes that time), or kNone.
+  // `nodes` are the particles' flights (x and v at their own clocks). Two passes: the first,
+  // without branches on the (random) signs, keeps the neighbours that approach and could touch
+  // before the best time so far (the test of contact_time_before(), against the shell expiry); the
+  // second solves the few kept exactly. Inlined into the engine's prediction.
+  static constexpr std::uint32_t kNone = ~0u;
+  template <class Nodes>
+  [[gnu::always_inline]] std::uint32_t first_contact(std::uint32_t i, const Nodes& nodes, const Vec3& xi, const Vec3& vi,
+                                                     double now, double& best) {
+    const std::uint32_t* list = list_of(i) + 1;
+    const std::uint32_t count = list[-1];
+    const bool inside = inside_[i] != 0;
+    auto separation = [&](const auto& fj) {
+      const Vec3 xj = fj.x + (now - fj.clock) * fj.v;
+      return inside ? xi - xj : nearest(xi - xj);
+    };
+    const double speed_i = norm(vi);
+    const double sigma2 = 4.0 * uniform_radius_ * uniform_radius_;
+    const double horizon = -2.0 * best * (1.0 + 1e-9);
+    std::uint32_t* kept = kept_.data();  // list_cap_ long
+    std::uint32_t m = 0;
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const auto& fj = nodes[list[k]];
+      const Vec3 d = separation(fj);
+      const double b = dot(d, vi - fj.v);
+      const double c = norm2(d) - sigma2;
+      kept[m] = list[k];
+      m += (b < 0.0) & (c <= b * horizon);
+    }
+    std::uint32_t first = kNone;
+    for (std::uint32_t q = 0; q < m; ++q) {
+      const std::uint32_t j = kept[q];
+      const auto& fj = nodes[j];
+      auto floor = [&] { return kVelocityResolution * (speed_i + norm(fj.v)); };
+      const double t = contact_time_before(separation(fj), vi - fj.v, 2.0 * uniform_radius_, best, floor);
+      if (t < best) {
+        best = t;
+        first = j;
+      }
+    }
+    return first;
   }
 
   // Time until i, at xi moving at vi, is a shell away from its list centre (0 when it already is,
@@ -348,7 +389,7 @@ class NeighborLists {
   Vec3 period_, inv_period_;             // box lengths along periodic axes (0 elsewhere) and inverses
   std::vector<Vec3> center_;             // list centres
   std::vector<std::uint8_t> inside_;     // far_from_faces() at the last rebuild
-  std::vector<std::uint32_t> kept_;      // scratch(): the neighbours a prediction keeps to solve for
+  std::vector<std::uint32_t> kept_;      // first_contact()'s scratch: the neighbours worth solving for
   AlignedWords list_;                    // list_cap_ words per particle: count, then neighbours
   std::size_t list_cap_ = 0;
   double slot_rounding_ = 0.0;           // m, bound on the error of a distance between centres in slots
