@@ -10,7 +10,7 @@ TEST(TcModel, ACollisionSoonAfterTheLastIsElastic) {
   TcModel tc;
   tc.reset(3, 1e-3);
   EXPECT_FALSE(tc.recent(0, 0.0));  // never collided
-  tc.collided(0, 2.0);
+  tc.note_collision(0, 2.0);
   EXPECT_TRUE(tc.recent(0, 2.0));
   EXPECT_TRUE(tc.recent(0, 2.0 + 0.9e-3));
   EXPECT_FALSE(tc.recent(0, 2.0 + 1.1e-3));
@@ -22,6 +22,6 @@ TEST(TcModel, ACollisionSoonAfterTheLastIsElastic) {
 TEST(TcModel, AZeroContactDurationTurnsItOff) {
   TcModel tc;
   tc.reset(2, 0.0);
-  tc.collided(1, 4.0);
+  tc.note_collision(1, 4.0);
   EXPECT_FALSE(tc.recent(1, 4.0));
 }

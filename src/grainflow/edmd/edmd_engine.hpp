@@ -497,8 +497,8 @@ class EdmdEngine {
                                       normal, recent ? tc_.elastic() : s_.restitution, recent ? -1.0 : s_.tangential_restitution);
     const double lost = before - kinetic_energy(i) - kinetic_energy(j);
     flight_[j].v -= frame;
-    tc_.collided(i, s_.time);
-    tc_.collided(j, s_.time);
+    tc_.note_collision(i, s_.time);
+    tc_.note_collision(j, s_.time);
     counters_.virial += dot(dr, impulse);
     counters_.dissipated += lost;
     ++flight_[i].count;
@@ -511,11 +511,12 @@ class EdmdEngine {
   // unchanged (positions, hence separation and image frame) is recomputed here (collision_reports.hpp).
   [[gnu::noinline, gnu::cold]] void report_pair(std::uint32_t i, std::uint32_t j, const Vec3& impulse, double lost) {
     const Vec3 dr = displacement(i, j);
-    const Collided a = collided(i, flight_[i].x, flight_[i].v);
-    const Collided b = collided(j, flight_[i].x - dr, flight_[j].v + image_velocity(i, j));
+    const Collided a = after_collision(i, flight_[i].x, flight_[i].v);
+    const Collided b = after_collision(j, flight_[i].x - dr, flight_[j].v + image_velocity(i, j));
     observer_->on_pair(pair_collision_report(s_.time, i, j, a, b, dr, impulse, lost));
   }
-  Collided collided(std::uint32_t i, const Vec3& x, const Vec3& v) const {
+  // Particle i as a collision left it, at x moving at v (for a pair's j: those of the image met).
+  Collided after_collision(std::uint32_t i, const Vec3& x, const Vec3& v) const {
     const ParticleStore& p = s_.particles;
     return {x, v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]};
   }
@@ -533,7 +534,7 @@ class EdmdEngine {
     const Vec3 impulse = collide_wall({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
                                       normal, wall.velocity, recent ? tc_.elastic() : wall.restitution, condition);
     servo_.add_normal_impulse(w, dot(impulse, normal));
-    tc_.collided(i, s_.time);
+    tc_.note_collision(i, s_.time);
     const double lost = before - kinetic_energy(i, wall.velocity);
     counters_.dissipated += lost;
     ++flight_[i].count;
@@ -544,8 +545,8 @@ class EdmdEngine {
 
   [[gnu::noinline, gnu::cold]] void report_wall(std::uint32_t i, int w, const Vec3& normal, const Vec3& impulse,
                                                 WallCondition condition, double lost) {
-    observer_->on_wall(wall_collision_report(s_.time, i, w, s_.walls[w], collided(i, flight_[i].x, flight_[i].v), normal,
-                                             impulse, condition, lost));
+    const Collided a = after_collision(i, flight_[i].x, flight_[i].v);
+    observer_->on_wall(wall_collision_report(s_.time, i, w, s_.walls[w], a, normal, impulse, condition, lost));
   }
 
   // Too slow to bounce (section 2.14.2): the particle rolls along the wall until its next particle

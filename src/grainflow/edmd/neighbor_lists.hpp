@@ -327,8 +327,9 @@ class NeighborLists {
 
   // True when i's centre lies so far inside the box along every periodic axis that no particle it
   // can meet is seen through a periodic face: a neighbour's centre is within reach (< 2 max radius
-  // + 2 shell) of i's, and any particle strays at most a shell from its centre (the engine may
-  // wrap one that strayed across a face, which needs its centre within a shell of that face).
+  // + 2 shell) of i's, and any particle strays at most a shell from its centre (the engine's
+  // synchronize() may wrap one that strayed across a face, which needs its centre within a shell
+  // of that face).
   bool far_from_faces(const PeriodicBox& box, std::uint32_t i) const {
     const double margin = (max_diameter_ + 4.0 * shell_) * (1.0 + 1e-6);
     for (int a = 0; a < Dim; ++a)

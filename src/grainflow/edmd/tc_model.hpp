@@ -28,7 +28,7 @@ class TcModel {
 
   // Whether a collision of i at `now` is a TC collision (elastic and smooth).
   bool recent(std::uint32_t i, double now) const { return now - last_collision_[i] < contact_duration_; }
-  void collided(std::uint32_t i, double now) { last_collision_[i] = now; }
+  void note_collision(std::uint32_t i, double now) { last_collision_[i] = now; }
   double last_collision(std::size_t i) const { return last_collision_[i]; }  // s, -inf before the first
   const double* last_collision_address(std::uint32_t i) const { return &last_collision_[i]; }  // for prefetching
 
