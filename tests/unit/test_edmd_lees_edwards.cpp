@@ -1,12 +1,14 @@
 // Lees–Edwards boundaries (unbounded simple shear) in the event-driven engine: the image rows slide
 // at U = shear_rate x height, particles crossing the y faces become their sliding images, and
-// collisions across the boundary are resolved in the image's frame.
+// collisions across the boundary are resolved in the image's frame. Then the images on their own
+// (edmd/lees_edwards.hpp) against closed forms.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "grainflow/run/case_loader.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
+#include "grainflow/edmd/lees_edwards.hpp"
 
 using namespace grainflow;
 
@@ -105,4 +107,85 @@ TEST(EdmdLeesEdwards, ElasticDiscsHeatUpInelasticOnesReachASteadyState) {
     const double late = shear_profile(e.state().particles).second;
     EXPECT_NEAR(late / early, 1.0, 0.3);
   }
+}
+
+// The images themselves (edmd/lees_edwards.hpp) against closed forms: the row above stands offset
+// by U t modulo the width and moves at U; the nearest image of j may lie in the sliding row.
+TEST(LeesEdwardsImages, TheOffsetIsUTModuloTheWidth) {
+  const edmd::LeesEdwardsImages sheared{1.5};
+  EXPECT_DOUBLE_EQ(sheared.offset(10.0, 2.0), 3.0);
+  EXPECT_DOUBLE_EQ(sheared.offset(10.0, 9.0), 3.5);  // 13.5 mod 10
+  EXPECT_DOUBLE_EQ(edmd::LeesEdwardsImages{-1.5}.offset(10.0, 2.0), 7.0);  // within [0, L) either way
+  EXPECT_EQ(edmd::LeesEdwardsImages{}.offset(10.0, 5.0), 0.0);
+  EXPECT_FALSE(edmd::LeesEdwardsImages{}.sliding());
+  EXPECT_TRUE(sheared.sliding());
+}
+
+TEST(LeesEdwardsImages, TheNearestImageMayLieInTheSlidingRow) {
+  PeriodicBox box;
+  box.hi = {10.0, 8.0, 6.0};
+  box.periodic = {true, true, true};
+  const edmd::LeesEdwardsImages sheared{1.5};
+  const double t = 2.0;  // offset 3
+  // j near the bottom, i near the top: j's image in the row above stands at (0.5 + 3, 0.5 + 8).
+  const Vec3 xi{4.0, 7.5, 5.5}, xj{0.5, 0.5, 0.5};
+  const Vec3 d = sheared.separation<3>(box, xi, xj, t);
+  EXPECT_DOUBLE_EQ(d.x, 0.5);
+  EXPECT_DOUBLE_EQ(d.y, -1.0);
+  EXPECT_DOUBLE_EQ(d.z, -1.0);  // z wraps as in any periodic box
+  // Seen from j the image of i lies in the row below, shifted back.
+  const Vec3 back = sheared.separation<3>(box, xj, xi, t);
+  EXPECT_DOUBLE_EQ(back.x, -0.5);
+  EXPECT_DOUBLE_EQ(back.y, 1.0);
+  // In 2D z is left alone; in one row the offset plays no part.
+  EXPECT_DOUBLE_EQ(sheared.separation<2>(box, xi, xj, t).z, 5.0);
+  const Vec3 same_row = sheared.separation<3>(box, {9.5, 4.0, 1.0}, {0.5, 3.0, 1.0}, t);
+  EXPECT_DOUBLE_EQ(same_row.x, -1.0);
+  EXPECT_DOUBLE_EQ(same_row.y, 1.0);
+  // Not sliding: the plain minimum image.
+  const Vec3 plain = edmd::LeesEdwardsImages{}.separation<3>(box, xi, xj, t);
+  const Vec3 minimum = box.minimum_image(xi, xj);
+  EXPECT_EQ(plain.x, minimum.x);
+  EXPECT_EQ(plain.y, minimum.y);
+  EXPECT_EQ(plain.z, minimum.z);
+}
+
+// The image in the row above moves at +U, that in the row below at -U; images across x move at a
+// Couette cell's width rate, on top of the row's velocity.
+TEST(LeesEdwardsImages, ImagesMoveWithTheirRowAndTheWidth) {
+  PeriodicBox box;
+  box.hi = {10.0, 8.0, 1.0};
+  box.periodic = {true, true, true};
+  const edmd::LeesEdwardsImages sheared{1.5};
+  EXPECT_EQ(sheared.image_velocity(box, 0.0, {4.0, 7.5, 0.0}, {0.5, 0.5, 0.0}, 2.0).x, 1.5);
+  EXPECT_EQ(sheared.image_velocity(box, 0.0, {0.5, 0.5, 0.0}, {4.0, 7.5, 0.0}, 2.0).x, -1.5);
+  EXPECT_EQ(sheared.image_velocity(box, 0.0, {4.0, 4.0, 0.0}, {5.0, 3.0, 0.0}, 2.0).x, 0.0);
+  const edmd::LeesEdwardsImages still;
+  EXPECT_EQ(still.image_velocity(box, 0.2, {9.5, 4.0, 0.0}, {0.5, 4.0, 0.0}, 2.0).x, 0.2);  // j's image at 10.5
+  EXPECT_EQ(still.image_velocity(box, 0.2, {0.5, 4.0, 0.0}, {9.5, 4.0, 0.0}, 2.0).x, -0.2);
+  EXPECT_EQ(still.image_velocity(box, 0.2, {4.0, 4.0, 0.0}, {5.0, 4.0, 0.0}, 2.0).x, 0.0);
+  // Both: j's image in the row above stands at x = 9.5 + 3 = 12.5; the one nearest i (at 2.0) is a
+  // width back, at 2.5, and moves at U less the width rate.
+  const Vec3 v = sheared.image_velocity(box, 0.2, {2.0, 7.5, 0.0}, {9.5, 0.5, 0.0}, 2.0);
+  EXPECT_DOUBLE_EQ(v.x, 1.5 - 0.2);
+  EXPECT_EQ(v.y, 0.0);
+}
+
+// A particle leaving through the top face enters the row above, which stands offset by U t and
+// moves at U: brought back into the box it is shifted back by the offset (then into [lo, hi) along
+// x) and slowed by U; through the bottom face the other way.
+TEST(LeesEdwardsImages, AParticleThroughAYFaceBecomesItsImageInTheSlidingRow) {
+  PeriodicBox box;
+  box.hi = {10.0, 8.0, 1.0};
+  box.periodic = {true, true, true};
+  const edmd::LeesEdwardsImages sheared{1.5};
+  Vec3 x{1.0, 0.0, 0.0}, v{0.7, 0.2, 0.0};  // y already brought down by a height
+  EXPECT_EQ(sheared.enter_row(box, 1, 2.0, x, v), -1.0);  // 1 - 3 = -2, one width back up
+  EXPECT_DOUBLE_EQ(x.x, 8.0);
+  EXPECT_DOUBLE_EQ(v.x, 0.7 - 1.5);
+  EXPECT_EQ(v.y, 0.2);
+  Vec3 up{8.0, 8.0, 0.0}, w{0.0, -0.2, 0.0};  // through the bottom face
+  EXPECT_EQ(sheared.enter_row(box, -1, 2.0, up, w), 1.0);  // 8 + 3 = 11
+  EXPECT_DOUBLE_EQ(up.x, 1.0);
+  EXPECT_DOUBLE_EQ(w.x, 1.5);
 }

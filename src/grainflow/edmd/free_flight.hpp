@@ -14,6 +14,9 @@ namespace grainflow::edmd {
 
 inline constexpr double kNever = std::numeric_limits<double>::infinity();
 
+// Relative speeds below this fraction of the particles' speeds are round-off (see approaching()).
+inline constexpr double kVelocityResolution = 1e-10;
+
 // True when two touching particles close in faster than round-off resolves: the normal relative
 // speed must exceed 1e-9 of the relative speed (else the contact is grazing) and `speed_floor`
 // (the engine passes 1e-10 of the particles' speeds: below it an impulse is lost in the rounding
