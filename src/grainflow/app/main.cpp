@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 #include "grainflow/app/analyze_command.hpp"
-#include "grainflow/app/calibrate_command.hpp"
+#include "grainflow/run/calibration_run.hpp"
 #include "grainflow/app/check_command.hpp"
 #include "grainflow/app/constitutive_command.hpp"
 #include "grainflow/run/dem_run.hpp"
@@ -125,8 +125,8 @@ int main(int argc, char** argv) {
   sweep->add_option("--threads", sweep_options.threads, "OpenMP threads of each run (default 1)")->check(CLI::Range(1, 1024));
   sweep->add_flag("--quiet", sweep_options.quiet, "no progress lines");
 
-  // grainflow calibrate: K1 by Lan's maximum-overlap procedure (app/calibrate_command.hpp).
-  app::CalibrateOptions calibrate_options;
+  // grainflow calibrate: K1 by Lan's maximum-overlap procedure (run/calibration_run.hpp).
+  run::CalibrationOptions calibrate_options;
   double calibrate_duration = 0.0, calibrate_start_k1 = 0.0;
   auto* calibrate =
       app.add_subcommand("calibrate", "find the smallest K1 that keeps the max overlap <= 1% d (Lan 4.1.3)");
@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("calibrate")) {
       if (*duration_option) calibrate_options.duration = calibrate_duration;
       if (*start_option) calibrate_options.start_k1 = calibrate_start_k1;
-      return app::run_calibration(calibrate_options);
+      return run::run_calibration(calibrate_options);
     }
     if (app.got_subcommand("run") && !restart_path.empty()) {
       // The checkpoint's own --set assignments first, so that a restart needs only the case and the

@@ -3,7 +3,7 @@
 // K1 / 100 (eq. 2-5-10 at the floor's peak speed; Lan's rule), each trial runs the case in-process
 // (run_dem) with contact.k1 = the trial value, run.duration = --duration and run.halt_overlap =
 // --limit, so a trial whose maximum overlap exceeds limit * d halts early; K1 grows by --factor
-// until a trial stays within the limit (app/stiffness_search.hpp). If the first trial already
+// until a trial stays within the limit (run/stiffness_search.hpp). If the first trial already
 // passes, K1 steps down instead, and the smallest passing K1 is reported. Trials go to
 // OUTDIR/trial_NN; OUTDIR/calibration.csv and calibration.json record them (docs/OUTPUTS.md).
 #pragma once
@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-namespace grainflow::app {
+namespace grainflow::run {
 
-struct CalibrateOptions {
+struct CalibrationOptions {
   std::string case_path;
   std::string output_directory;        // "" = runs/calibrate_<case stem>
   std::vector<std::string> overrides;  // --set, applied to every trial before the calibrated keys
@@ -30,6 +30,6 @@ struct CalibrateOptions {
 // Runs the calibration. Returns 0 when a passing K1 was found, 1 when none was within max_trials
 // (the files are still written). Throws InputError (exit 2, nothing written) for bad options or an
 // invalid case, RunError when a trial fails for a reason other than the overlap.
-int run_calibration(const CalibrateOptions& options);
+int run_calibration(const CalibrationOptions& options);
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run
