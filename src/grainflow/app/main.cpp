@@ -7,10 +7,10 @@
 #include <new>
 #include <unistd.h>
 
-#include "grainflow/app/analyze_command.hpp"
+#include "grainflow/run/trajectory_analysis.hpp"
 #include "grainflow/run/calibration_run.hpp"
 #include "grainflow/app/check_command.hpp"
-#include "grainflow/app/constitutive_command.hpp"
+#include "grainflow/run/constitutive_table.hpp"
 #include "grainflow/run/dem_run.hpp"
 #include "grainflow/run/edmd_run.hpp"
 #include "grainflow/run/interrupt.hpp"
@@ -18,8 +18,8 @@
 #include "grainflow/io/checkpoint_file.hpp"
 #include "grainflow/parallel/communicator.hpp"
 #include "grainflow/run/run_records.hpp"
-#include "grainflow/app/sweep_command.hpp"
-#include "grainflow/app/theory_command.hpp"
+#include "grainflow/run/sweep_run.hpp"
+#include "grainflow/run/theory_report.hpp"
 #include "grainflow/run/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
@@ -95,9 +95,9 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("cases", "list the bundled cases");
 
-  // grainflow analyze: correlations and diffusion from a run's trajectory.h5 (app/analyze_command.hpp).
+  // grainflow analyze: correlations and diffusion from a run's trajectory.h5 (run/trajectory_analysis.hpp).
   std::string analyze_dir;
-  app::AnalyzeOptions analyze_options;
+  run::AnalyzeOptions analyze_options;
   auto* analyze = app.add_subcommand("analyze", "correlation functions and diffusion coefficients of a finished run");
   analyze->add_option("outdir", analyze_dir, "output folder of a run with trajectory.h5")->required();
   analyze->add_option("--max-lag", analyze_options.max_lag, "longest lag in samples (default: the case's trajectory.max_lag)")
@@ -110,8 +110,8 @@ int main(int argc, char** argv) {
       ->expected(2)
       ->check(CLI::NonNegativeNumber);
 
-  // grainflow sweep: the case at many values of some keys, runs in parallel (app/sweep_command.hpp).
-  app::SweepOptions sweep_options;
+  // grainflow sweep: the case at many values of some keys, runs in parallel (run/sweep_run.hpp).
+  run::SweepOptions sweep_options;
   auto* sweep = app.add_subcommand("sweep", "run a case at many values of some keys, as parallel processes");
   sweep->add_option("case", sweep_options.case_path, "case file (TOML)")->required();
   sweep->add_option("--vary", sweep_options.vary, "a key and its values: --vary collision.restitution=0.5,0.7")
@@ -144,8 +144,8 @@ int main(int argc, char** argv) {
       ->type_name("KEY=VALUE")->allow_extra_args(false);
   calibrate->add_option("--threads", calibrate_options.threads, "OpenMP threads (default 1)")->check(CLI::Range(1, 1024));
   calibrate->add_flag("--quiet", calibrate_options.quiet, "no progress line during the trials");
-  // grainflow theory: steady kinetic-theory profiles of a vibrated bed (app/theory_command.hpp).
-  app::TheoryOptions theory_options;
+  // grainflow theory: steady kinetic-theory profiles of a vibrated bed (run/theory_report.hpp).
+  run::TheoryOptions theory_options;
   auto* theory = app.add_subcommand("theory", "kinetic-theory profiles of a vibrated bed for a case or a run's folder");
   theory->add_option("input", theory_options.input, "case file (TOML), or a run's output folder")->required();
   theory->add_option("-o,--output", theory_options.output,
@@ -154,8 +154,8 @@ int main(int argc, char** argv) {
   theory->add_option("--g0", theory_options.contact_value, "radial distribution at contact (default torquato)")
       ->check(CLI::IsMember({"torquato", "carnahan_starling"}));
 
-  // grainflow constitutive: chi(nu), f_s(nu), f_N(nu) over strips and runs (app/constitutive_command.hpp).
-  app::ConstitutiveOptions constitutive_options;
+  // grainflow constitutive: chi(nu), f_s(nu), f_N(nu) over strips and runs (run/constitutive_table.hpp).
+  run::ConstitutiveOptions constitutive_options;
   auto* constitutive = app.add_subcommand(
       "constitutive", "collect the event-driven runs' constitutive.csv (chi, f_s, f_N per strip) into one table");
   constitutive->add_option("folders", constitutive_options.folders, "run or sweep folders, searched recursively")->required();
@@ -177,11 +177,11 @@ int main(int argc, char** argv) {
         analyze_options.first_strip = analyze_strips[0];
         analyze_options.last_strip = analyze_strips[1];
       }
-      return app::analyze_run(analyze_dir, analyze_options);
+      return run::analyze_run(analyze_dir, analyze_options);
     }
-    if (app.got_subcommand("theory")) return app::run_theory(theory_options);
-    if (app.got_subcommand("constitutive")) return app::collect_constitutive(constitutive_options);
-    if (app.got_subcommand("sweep")) return app::run_sweep(sweep_options, std::vector<std::string>(argv, argv + argc));
+    if (app.got_subcommand("theory")) return run::run_theory(theory_options);
+    if (app.got_subcommand("constitutive")) return run::collect_constitutive(constitutive_options);
+    if (app.got_subcommand("sweep")) return run::run_sweep(sweep_options, std::vector<std::string>(argv, argv + argc));
     if (app.got_subcommand("calibrate")) {
       if (*duration_option) calibrate_options.duration = calibrate_duration;
       if (*start_option) calibrate_options.start_k1 = calibrate_start_k1;

@@ -1,4 +1,4 @@
-#include "grainflow/app/sweep_command.hpp"
+#include "grainflow/run/sweep_run.hpp"
 
 #include <fcntl.h>
 #include <sched.h>
@@ -28,9 +28,8 @@
 
 extern char** environ;
 
-namespace grainflow::app {
+namespace grainflow::run {
 
-using namespace grainflow::run;  // the run drivers and their tools
 
 namespace fs = std::filesystem;
 
@@ -420,4 +419,4 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   return 1;
 }
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace grainflow::app {
+namespace grainflow::run {
 
 struct ConstitutiveOptions {
   std::vector<std::string> folders;
@@ -19,4 +19,4 @@ struct ConstitutiveOptions {
 // constitutive.csv, or two files' columns differ.
 int collect_constitutive(const ConstitutiveOptions& options);
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run

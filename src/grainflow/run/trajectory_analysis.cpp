@@ -1,4 +1,4 @@
-#include "grainflow/app/analyze_command.hpp"
+#include "grainflow/run/trajectory_analysis.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -10,14 +10,14 @@
 #include "grainflow/analysis/correlation.hpp"
 #include "grainflow/analysis/diffusion.hpp"
 #include "grainflow/analysis/spectrum.hpp"
-#include "grainflow/app/analyze_distributions.hpp"
+#include "grainflow/run/distribution_analysis.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/hdf5_file.hpp"
 #include "grainflow/io/flat_json_reader.hpp"
 #include "grainflow/io/json_writer.hpp"
 
-namespace grainflow::app {
+namespace grainflow::run {
 namespace {
 
 namespace fs = std::filesystem;
@@ -272,4 +272,4 @@ void analyze_trajectory(const fs::path& dir, const AnalyzeOptions& options) {
 }
 
 }  // namespace
-}  // namespace grainflow::app
+}  // namespace grainflow::run

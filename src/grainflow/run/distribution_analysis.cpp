@@ -1,4 +1,4 @@
-#include "grainflow/app/analyze_distributions.hpp"
+#include "grainflow/run/distribution_analysis.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -12,7 +12,7 @@
 #include "grainflow/io/hdf5_file.hpp"
 #include "grainflow/io/json_writer.hpp"
 
-namespace grainflow::app {
+namespace grainflow::run {
 
 bool is_edmd_trajectory(const std::string& path) {
   const io::H5Reader h5(path);
@@ -167,4 +167,4 @@ void analyze_distributions(const std::string& output_directory, const AnalyzeOpt
   std::cout << "(written to " << (dir / "analysis").string() << "/)\n";
 }
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run

@@ -7,13 +7,13 @@
 #include <string>
 
 #include "grainflow/analysis/state_samples.hpp"
-#include "grainflow/app/analyze_command.hpp"
+#include "grainflow/run/trajectory_analysis.hpp"
 
-namespace grainflow::app {
+namespace grainflow::run {
 
 // Whether trajectory.h5 holds an event-driven run's instantaneous states.
 bool is_edmd_trajectory(const std::string& path);
 analysis::StateSamples read_state_samples(const std::string& path);
 void analyze_distributions(const std::string& output_directory, const AnalyzeOptions& options);
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run

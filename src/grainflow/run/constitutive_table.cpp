@@ -1,4 +1,4 @@
-#include "grainflow/app/constitutive_command.hpp"
+#include "grainflow/run/constitutive_table.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -10,7 +10,7 @@
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/flat_json_reader.hpp"
 
-namespace grainflow::app {
+namespace grainflow::run {
 namespace {
 
 namespace fs = std::filesystem;
@@ -137,4 +137,4 @@ int collect_constitutive(const ConstitutiveOptions& options) {
   return 0;
 }
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run

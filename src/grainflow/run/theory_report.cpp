@@ -1,4 +1,4 @@
-#include "grainflow/app/theory_command.hpp"
+#include "grainflow/run/theory_report.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -17,9 +17,8 @@
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/flat_json_reader.hpp"
 
-namespace grainflow::app {
+namespace grainflow::run {
 
-using namespace grainflow::run;  // the run drivers and their tools
 
 namespace fs = std::filesystem;
 
@@ -224,4 +223,4 @@ int run_theory(const TheoryOptions& options) {
   return 0;
 }
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run

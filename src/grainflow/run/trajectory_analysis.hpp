@@ -3,12 +3,12 @@
 // and the self-diffusion coefficients from both (eqs. 3-2-5, 3-3-5, 4-4-2, 4-4-5, 4-4-6), with
 // error bars from independent groups of particles. An event-driven run's trajectory.h5 (instantaneous
 // states) gives Campbell's velocity and pair distributions instead (Campbell 1982 section 3.4; see
-// app/analyze_distributions.hpp). Writes OUTDIR/analysis/.
+// run/distribution_analysis.hpp). Writes OUTDIR/analysis/.
 #pragma once
 
 #include <string>
 
-namespace grainflow::app {
+namespace grainflow::run {
 
 struct AnalyzeOptions {
   long long max_lag = 0;  // samples; 0: the run's trajectory.max_lag
@@ -20,4 +20,4 @@ struct AnalyzeOptions {
 // Returns the exit status (0, or 2 when the folder has nothing to analyse).
 int analyze_run(const std::string& output_directory, const AnalyzeOptions& options);
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run

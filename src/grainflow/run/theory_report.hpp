@@ -9,7 +9,7 @@
 #include "grainflow/analysis/kinetic_theory.hpp"
 #include "grainflow/config/case_config.hpp"
 
-namespace grainflow::app {
+namespace grainflow::run {
 
 struct TheoryOptions {
   std::string input;                     // a case file, or a run's output folder (with summary.json)
@@ -36,4 +36,4 @@ TheoryInputs theory_inputs(const CaseConfig& c);
 // Returns the exit status: 0, or throws InputError (exit 2) / RunError (exit 1, no solution).
 int run_theory(const TheoryOptions& options);
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run

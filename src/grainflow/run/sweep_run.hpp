@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace grainflow::app {
+namespace grainflow::run {
 
 struct SweepOptions {
   std::string case_path;
@@ -26,4 +26,4 @@ struct SweepOptions {
 // a malformed --vary, and RunError when the output folder cannot be written.
 int run_sweep(const SweepOptions& options, const std::vector<std::string>& command);
 
-}  // namespace grainflow::app
+}  // namespace grainflow::run
