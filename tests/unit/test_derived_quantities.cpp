@@ -197,3 +197,21 @@ TEST(DerivedQuantities, GivenTimeStepIsUsedAndItsNReported) {
   // 6.3139e-5 s is n = 15, so half of it is n = 30.07.
   EXPECT_NEAR(d.collision_steps, 15.0 * wb_time_step(0.9, 15, 2.8e6, sphere_mass(0.1, 1200.0)) / 3.15e-5, 1e-9);
 }
+
+// Radius expansion without particles.expansion_time: max(2 sqrt(2 d / g), 200 contact durations),
+// the same in any consistent units. 3 mm glass under 9.81 m/s^2: 2 sqrt(2 (0.003) / 9.81) = 0.0495 s,
+// far above 200 t_c (2.7 ms at K1 = 1e6); without gravity the contact durations set it; a given
+// value is used as it is.
+TEST(DerivedQuantities, ExpansionTimeFollowsTheFallTimeOrTheContactDuration) {
+  const std::string bed = bed_case(0.003, 2490.0, 239, 0.015, 1.0e6, "", 20);
+  const DerivedQuantities d = derive(load_case_from_string(bed, "c.toml"));
+  EXPECT_NEAR(d.expansion_time, 2.0 * std::sqrt(2.0 * 0.003 / 9.81), 1e-15);
+  EXPECT_GT(d.expansion_time, 200.0 * d.contact_duration);
+  const DerivedQuantities weightless = derive(load_case_from_string(bed, "c.toml", {"gravity.vector=[0.0, 0.0, 0.0]"}));
+  EXPECT_NEAR(weightless.expansion_time, 200.0 * weightless.contact_duration, 1e-15);
+  const DerivedQuantities given = derive(load_case_from_string(bed, "c.toml", {"particles.expansion_time=0.01"}));
+  EXPECT_EQ(given.expansion_time, 0.01);
+  // Reduced units (d = g = 1): 2 sqrt(2) time units however stiff the contact (here 200 t_c = 0.5).
+  EXPECT_DOUBLE_EQ(default_expansion_time(1.0, 1.0, 0.0025), 2.0 * std::sqrt(2.0));
+  EXPECT_DOUBLE_EQ(default_expansion_time(1.0, 1.0, 0.05), 10.0);
+}

@@ -53,6 +53,31 @@ void print_edmd_check(const CaseConfig& c, std::ostream& out) {
                      c.run.collisions > 0 ? fmt::format(" or {} collisions", c.run.collisions) : "");
 }
 
+// Radius expansion: how long, and whether growth outpaces what settles it. A radius grows by at
+// most d/2 over the expansion time; faster than sqrt(g d) it throws grains up (the kinetic energy it
+// injects is of order m v^2, a bed's potential energy per grain of order m g d), and more than 1 % of
+// d per contact duration it drives overlaps the contact law has no time to resolve.
+void print_expansion(const CaseConfig& c, const dem::DerivedQuantities& d, double diameter, std::ostream& out) {
+  const double t = d.expansion_time;
+  out << fmt::format("  radius expansion            {:.6g} s  ({}; = {:.3g} contact durations{})\n", t,
+                     c.particles.expansion_time >= 0.0 ? "particles.expansion_time" : "default",
+                     d.contact_duration > 0.0 ? t / d.contact_duration : 0.0,
+                     d.gravity_magnitude > 0.0
+                         ? fmt::format(", {:.3g} fall times over d", t / std::sqrt(2.0 * diameter / d.gravity_magnitude))
+                         : std::string());
+  const double growth = t > 0.0 ? 0.5 * diameter / t : INFINITY;  // the fastest a radius grows
+  const double per_contact = growth * d.contact_duration / diameter;
+  if (per_contact > 0.01)
+    out << fmt::format("  warning: radii grow up to {:.3g} d per contact duration: too fast for this stiffness "
+                       "(raise particles.expansion_time to at least {:.3g} s, or leave it out)\n",
+                       per_contact, 50.0 * d.contact_duration);
+  else if (d.gravity_magnitude > 0.0 && growth > std::sqrt(d.gravity_magnitude * diameter))
+    out << fmt::format("  warning: radii grow at up to {:.3g} sqrt(g d): growth will throw grains up (raise "
+                       "particles.expansion_time to at least {:.3g} s, or leave it out)\n",
+                       growth / std::sqrt(d.gravity_magnitude * diameter),
+                       0.5 * diameter / std::sqrt(d.gravity_magnitude * diameter));
+}
+
 }  // namespace
 
 void print_check(const CaseConfig& c, std::ostream& out) {
@@ -76,6 +101,7 @@ void print_check(const CaseConfig& c, std::ostream& out) {
                      d.steps_per_contact);
   out << fmt::format("  steps to run                {:.6g}\n", std::ceil(c.run.duration / d.time_step));
   out << fmt::format("  neighbor skin               {:.6g} m\n", d.skin);
+  if (c.particles.init == "random") print_expansion(c, d, ref.diameter, out);
   if (c.drive.enabled) {
     out << fmt::format("  floor peak speed            {:.6g} m/s\n", d.floor_peak_speed);
     out << fmt::format("  expected max floor overlap  {:.4g} m = {:.4g} d  (sphere hitting the floor at its peak speed)\n",

@@ -55,7 +55,9 @@ struct ParticlesConfig {
   double initial_temperature = 0.0;  // m^2/s^2
   std::uint64_t seed = 1;
   std::optional<Vec3> region_lo, region_hi;  // m, where random / lattice particles go
-  double expansion_time = 0.05;  // s, radius expansion of section 2.2 (init = random)
+  // s, radius expansion of section 2.2 (init = random); < 0: not given, two fall times over the
+  // reference diameter or 200 contact durations, whichever is longer (dem::DerivedQuantities)
+  double expansion_time = -1.0;
   double lattice_spacing = 1.02; // in diameters of the largest species (init = lattice)
   std::string lattice = "cubic"; // edmd: cubic (square in 2D) | fcc (3D; lattice_spacing = nearest-neighbor distance)
   double lattice_jitter = 0.0;   // edmd lattice: random displacement, as a fraction of the gap

@@ -163,8 +163,10 @@ void read_particles(TomlReader& top, CaseConfig& c) {
   p.seed = static_cast<std::uint64_t>(seed);
   if (r.has("region_lo")) p.region_lo = r.vec3("region_lo", {});
   if (r.has("region_hi")) p.region_hi = r.vec3("region_hi", {});
-  p.expansion_time = r.number("expansion_time", p.expansion_time);
-  if (p.expansion_time < 0.0) r.fail("expansion_time", "must not be negative");
+  if (r.has("expansion_time")) {
+    p.expansion_time = r.number("expansion_time", p.expansion_time);
+    if (p.expansion_time < 0.0) r.fail("expansion_time", "must not be negative");
+  }
   p.lattice = r.string("lattice", p.lattice);
   if (p.lattice != "cubic" && p.lattice != "fcc") r.fail("lattice", "must be \"cubic\" or \"fcc\"");
   if (p.lattice == "fcc" && (c.engine.kind != "edmd" || c.engine.dimension != 3))

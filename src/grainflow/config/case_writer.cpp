@@ -97,7 +97,7 @@ void write_particles(Out& o, const CaseConfig& c) {
   o.key("seed", static_cast<long long>(p.seed));
   if (p.region_lo) o.key("region_lo", vec(*p.region_lo));
   if (p.region_hi) o.key("region_hi", vec(*p.region_hi));
-  o.key("expansion_time", p.expansion_time);
+  if (p.expansion_time >= 0.0) o.key("expansion_time", p.expansion_time);
   o.key("lattice_spacing", p.lattice_spacing);
   o.text_key("lattice", p.lattice);
   o.key("lattice_jitter", p.lattice_jitter);

@@ -19,6 +19,11 @@ double hertz_equivalent_k1(double youngs_modulus, double poisson_ratio, double d
   return mass * (speed / alpha) * (speed / alpha);
 }
 
+double default_expansion_time(double diameter, double gravity, double contact_duration) {
+  const double fall = gravity > 0.0 ? std::sqrt(2.0 * diameter / gravity) : 0.0;
+  return std::max(kExpansionFallTimes * fall, kExpansionContactDurations * contact_duration);
+}
+
 DerivedQuantities derive(const CaseConfig& c) {
   DerivedQuantities d;
   d.model = c.contact.model;
@@ -126,6 +131,9 @@ DerivedQuantities derive(const CaseConfig& c) {
   }
   d.mass_holdup = volume / (area * ref.diameter);
   d.skin = c.run.skin > 0.0 ? c.run.skin : 0.15 * d.max_diameter;
+  d.expansion_time = c.particles.expansion_time >= 0.0
+                         ? c.particles.expansion_time
+                         : default_expansion_time(ref.diameter, d.gravity_magnitude, d.contact_duration);
   return d;
 }
 

@@ -114,6 +114,10 @@ void place_lattice(const CaseConfig& c, DemState& s, std::mt19937_64& rng, doubl
       }
 }
 
+double expansion_time(const CaseConfig& c) {
+  return c.particles.expansion_time >= 0.0 ? c.particles.expansion_time : derive(c).expansion_time;
+}
+
 // Random centres (a radius clear of solid faces and bumps), then each radius shrunk to its share of
 // the nearest-neighbor distance; radii grow back at one constant rate over expansion_time (section 2.2).
 void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
@@ -185,9 +189,10 @@ void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
     p.radius[i] = std::max(allowed[i], 1e-3 * p.target_radius[i]);
     largest_deficit = std::max(largest_deficit, p.target_radius[i] - p.radius[i]);
   }
-  if (largest_deficit > 0.0)
-    s.expansion_rate = c.particles.expansion_time > 0.0 ? largest_deficit / c.particles.expansion_time
-                                                        : std::numeric_limits<double>::infinity();
+  if (largest_deficit > 0.0) {
+    const double duration = expansion_time(c);
+    s.expansion_rate = duration > 0.0 ? largest_deficit / duration : std::numeric_limits<double>::infinity();
+  }
 }
 
 void place_from_file(const CaseConfig& c, DemState& s) {

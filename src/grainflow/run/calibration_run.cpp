@@ -193,10 +193,11 @@ void CalibrationRun::warn_of_the_case() {
     warnings.push_back(fmt::format("the trials end at {:.6g} s, before the drive reaches its full amplitude at "
                                    "drive.start + drive.ramp = {:.6g} s: the hardest impacts may be missed",
                                    duration, probe.drive.start + probe.drive.ramp));
-  if (probe.particles.init == "random" && duration <= probe.particles.expansion_time)
+  const double expansion = dem::derive(probe).expansion_time;
+  if (probe.particles.init == "random" && duration <= expansion)
     warnings.push_back(fmt::format("the trials end within the radius expansion (particles.expansion_time = {:.6g} s), "
                                    "which the overlap monitor ignores: every trial will pass",
-                                   probe.particles.expansion_time));
+                                   expansion));
   for (const auto& w : warnings) std::cerr << "grainflow: warning: " << w << "\n";
 }
 

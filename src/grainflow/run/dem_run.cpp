@@ -539,6 +539,15 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
     summary.number("wall_collision_rate_per_particle",
                    static_cast<double>(rows.back().wall_collisions - first->wall_collisions) / moving / span);
   }
+  if (c.particles.init == "random") {
+    // Radius expansion (section 2.2): how long it took, and the kinetic energy left when the radii
+    // reached full size (the first row from then), which growth must not have pumped up.
+    summary.number("expansion_time", derived.expansion_time);
+    const auto grown = std::find_if(rows.begin(), rows.end(),
+                                    [&](const TimeseriesRow& r) { return r.time >= derived.expansion_time * (1.0 - 1e-12); });
+    if (grown != rows.end())
+      summary.number("expansion_end_kinetic_energy", grown->global.kinetic_energy + grown->global.rotational_energy);
+  }
   summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
   exit_status = finish_summary(summary, dir, errors, warnings, exit_status, options.echo_errors);
 }
