@@ -65,6 +65,11 @@ TEST(VelocityField, VisitWeightedConvectionSpeedAndPhaseBins) {
   EXPECT_NEAR(cells[0].velocity_vertical, 0.0, 1e-15);
   EXPECT_NEAR(cells[1].speed(), 0.5, 1e-15);
   EXPECT_NEAR(field.convection_speed(), (3 * 0.0 + 2 * 0.5) / 5.0, 1e-15);
+  // Lan's plain mean over cells: (0 + 0.5) / 2. The mean visited cell has 2.5 visits: a cut-off at
+  // 0.9 of it (2.25) keeps only the cell of 3, at 1.3 (3.25) none.
+  EXPECT_NEAR(field.cell_mean_convection_speed(), 0.25, 1e-15);
+  EXPECT_NEAR(field.cell_mean_convection_speed(0.9), 0.0, 1e-15);
+  EXPECT_EQ(field.cell_mean_convection_speed(1.3), 0.0);
   // Bin 1 saw only sample a, bin 3 only sample b, bins 0 and 2 nothing.
   EXPECT_EQ(field.cells(1)[0].visits, 1);
   EXPECT_NEAR(field.cells(1)[0].velocity_vertical, 1.0, 1e-15);

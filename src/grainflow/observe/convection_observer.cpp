@@ -74,6 +74,8 @@ void ConvectionObserver::write(const Frame& last, OutputSink& out) {
       for (int b = 0; b < field_.bins(); ++b) cells(file, b);
     });
   out.summary->number("convection_speed", field_.convection_speed());
+  out.summary->number("convection_speed_cell_mean", field_.cell_mean_convection_speed());
+  out.summary->number("convection_speed_cell_mean_dense", field_.cell_mean_convection_speed(kDenseCellFraction));
 }
 
 }  // namespace grainflow::observe

@@ -9,6 +9,9 @@
 
 namespace grainflow::observe {
 
+// convection_speed_cell_mean_dense counts the cells visited at least this share of the mean.
+inline constexpr double kDenseCellFraction = 0.1;
+
 class ConvectionObserver final : public Observer {
  public:
   explicit ConvectionObserver(const RunContext& run);

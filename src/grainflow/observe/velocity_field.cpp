@@ -88,4 +88,18 @@ double VelocityField::convection_speed() const {
   return visits > 0 ? weighted / visits : 0.0;
 }
 
+double VelocityField::cell_mean_convection_speed(double min_visit_fraction) const {
+  const auto all = cells();
+  long visits = 0, visited = 0;
+  for (const FieldCell& c : all)
+    if (c.visits > 0) visits += c.visits, ++visited;
+  if (visited == 0) return 0.0;
+  const double threshold = std::max(1.0, min_visit_fraction * static_cast<double>(visits) / static_cast<double>(visited));
+  double sum = 0.0;
+  long counted = 0;
+  for (const FieldCell& c : all)
+    if (static_cast<double>(c.visits) >= threshold) sum += c.speed(), ++counted;
+  return counted > 0 ? sum / static_cast<double>(counted) : 0.0;
+}
+
 }  // namespace grainflow::observe

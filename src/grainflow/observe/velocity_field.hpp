@@ -37,6 +37,11 @@ class VelocityField {
   std::vector<FieldCell> cells(int bin = -1) const;  // -1: long-term
   // Visit-weighted mean of the cells' mean speeds (Table 5.1's average convection velocity).
   double convection_speed() const;
+  // Lan's own average (Table 5.1): the plain mean of the cells' mean speeds, every cell counting
+  // once, over the cells visited at least `min_visit_fraction` times as often as the mean visited
+  // cell (0: every visited cell). A sparsely visited cell's mean speed is noisy and biased upward,
+  // so the cut-off shows how much the plain mean depends on them.
+  double cell_mean_convection_speed(double min_visit_fraction = 0.0) const;
   long samples() const { return samples_; }
   int bins() const { return bins_; }
   int columns() const { return columns_; }
