@@ -277,6 +277,14 @@ void StripProfileObserver::write(const Frame&, OutputSink& out) {
 
   summary.integer("profile_samples", profile_.samples());
   summary.integer("profile_strips", static_cast<long long>(strips.size()));
+  // Campbell's per-run S (COL002's "AVERAGE R", Figs. 3.40-3.41): the listing's S averaged over
+  // every strip with particles, the wall strips included; beside it the middle strip's.
+  double s_sum = 0.0;
+  long s_count = 0;
+  for (double s : d.s_listing)
+    if (std::isfinite(s)) s_sum += s, ++s_count;
+  summary.number("S_listing_strip_mean", s_count > 0 ? s_sum / s_count : kNaN);
+  summary.number("S_listing_middle_strip", d.s_listing.empty() ? kNaN : d.s_listing[d.s_listing.size() / 2]);
   if (chute_) {
     summary.number("chute_angle", d.angle);
     summary.number("flow_depth", d.depth);

@@ -1,0 +1,50 @@
+// StripProfileObserver: Campbell's strip profiles of an event-driven run, and the per-run S his
+// listing averages over the strips (COL002's "AVERAGE R").
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "grainflow/observe/strip_profile_observer.hpp"
+#include "observer_fixture.hpp"
+
+namespace grainflow {
+namespace {
+
+// A Couette cell 10 mm tall with 1 mm discs' worth of strips: in every strip two spheres at its
+// centre move at u = shear y +- delta and v = -+ delta, so each strip's mean u is shear y, and
+// <u'^2> = <v'^2> = delta^2: S_listing = 2R (du/dy) / sqrt(2 delta^2) in every strip.
+TEST(StripProfileObserver, SavageJeffreySOfEachStripAndTheirMean) {
+  test::ObserverFixture f;
+  f.c.output.average_start = 0.0;
+  f.c.output.interval = 1.0;
+  f.box.periodic = {true, false, true};
+  f.add_wall(2, 0.0);
+  f.add_wall(3, 0.01);
+  const double shear = 50.0, delta = 0.01;  // 1/s, m/s
+  std::uint32_t id = 0;
+  for (int k = 0; k < 10; ++k) {
+    const double y = (k + 0.5) * 1e-3;
+    f.add(id++, {0.002, y, 0.005}, {shear * y + delta, -delta, 0.0});
+    f.add(id++, {0.007, y, 0.005}, {shear * y - delta, delta, 0.0});
+  }
+  const observe::RunContext run = f.context(0.0);
+  observe::StripProfileObserver profiles(run, f.at(0.0));
+  profiles.sample(f.at(0.1));
+  profiles.sample(f.at(0.2));
+  auto sink = f.sink();
+  profiles.write(f.frame, sink);
+  std::ostringstream json;
+  f.summary.write(json);
+  const std::string text = json.str();
+  const double expected = 2.0 * 0.5e-3 * shear / std::sqrt(2.0 * delta * delta);
+  for (const char* key : {"\"S_listing_strip_mean\": ", "\"S_listing_middle_strip\": "}) {
+    const auto at = text.find(key);
+    ASSERT_NE(at, std::string::npos) << key << " missing in " << text;
+    EXPECT_NEAR(std::stod(text.substr(at + std::string(key).size())), expected, 1e-9 * expected) << key;
+  }
+}
+
+}  // namespace
+}  // namespace grainflow
