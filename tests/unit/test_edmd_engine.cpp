@@ -709,3 +709,45 @@ duration = 200.0
   EXPECT_GT(e.counters().dissipated, 0.0);
   EXPECT_GE(observer.least_dissipated, -1e-12 * scale);
 }
+
+// ---------------------------------------------------------------------------------------------
+// The TC model's share of the collisions. Disc A (speed 1) hits B, which touches C at rest: with
+// e = 0.5, A keeps 0.25 and B takes 0.75; B, having just collided, meets C at once: a TC collision,
+// elastic and smooth, so B stops and C leaves at 0.75; A then meets the stopped B at once: a second
+// TC collision (A 0, B 0.25), and nothing more. 2 of 3 collisions are TC ones; with the model off,
+// none are (and the inelastic cascade takes more collisions).
+void check_tc_share(double contact_duration, long long collisions, long long tc) {
+  test::ParticleFile file("row.csv", "p,1.0,2.5,0.0,1,0,0\np,3.0,2.5,0.0,0,0,0\np,4.0,2.5,0.0,0,0,0\n");
+  const std::string text = R"([engine]
+kind = "edmd"
+dimension = 2
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [40.0, 5.0, 1.0]
+boundary = { x = "periodic", y = "periodic", z = "periodic" }
+[gravity]
+vector = [0.0, 0.0, 0.0]
+[[species]]
+name = "p"
+diameter = 1.0
+density = 1.0
+count = 0
+[particles]
+init = "file"
+file = ")" + file.path() + R"("
+[collision]
+restitution = 0.5
+contact_duration = )" + std::to_string(contact_duration) + R"(
+[run]
+duration = 5.0
+)";
+  EdmdEngine<2> e = engine_from<2>(text);
+  e.advance_to(5.0);
+  if (collisions > 0) EXPECT_EQ(e.counters().collisions, collisions);
+  EXPECT_EQ(e.counters().tc_collisions, tc);
+}
+
+TEST(EdmdTcModel, CountsTheCollisionsItMakesElastic) {
+  check_tc_share(0.01, 3, 2);
+  check_tc_share(0.0, 0, 0);
+}

@@ -487,6 +487,7 @@ class EdmdEngine {
     const Vec3 dr = displacement(i, j);
     const Vec3 normal = dr * (1.0 / norm(dr));
     const bool recent = tc_.recent(i, s_.time) || tc_.recent(j, s_.time);
+    counters_.tc_collisions += recent;
     // Across a Lees–Edwards boundary i meets j's sliding image: resolve in that frame, and measure
     // the energy lost there (in the lab frame the boundary's work would count as well).
     const Vec3 frame = image_velocity(i, j);
@@ -530,6 +531,7 @@ class EdmdEngine {
     // particle would count as well (and a sheared cell would seem to gain energy in collisions).
     const double before = kinetic_energy(i, wall.velocity);
     const bool recent = tc_.recent(i, s_.time);
+    counters_.tc_wall_collisions += recent;
     const WallCondition condition = recent ? WallCondition::smooth : wall.condition;
     const Vec3 impulse = collide_wall({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
                                       normal, wall.velocity, recent ? tc_.elastic() : wall.restitution, condition);

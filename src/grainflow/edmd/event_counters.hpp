@@ -14,6 +14,8 @@ struct EventCounters {
   double virial = 0.0;           // sum over collisions of r_ij . J_i (kg m^2/s), for the pressure
   double dissipated = 0.0;       // J lost in collisions
   long long servo_updates = 0;   // pressure-servo wall speed changes
+  long long tc_collisions = 0;   // particle-particle collisions the TC model made elastic and smooth
+  long long tc_wall_collisions = 0;
 };
 
 // The pressure-controlled Couette cell as last measured (section 2.14.3).

@@ -361,6 +361,10 @@ void EdmdRun::write_outputs(E& e) {
   summary.integer("stale_events", k.stale);
   summary.integer("neighbor_list_rebuilds", k.list_rebuilds);
   summary.integer("rolling_starts", k.rolling_starts);
+  // The TC model's share: collisions it made elastic and smooth (Campbell's rules have no such model).
+  summary.number("tc_collision_fraction", k.collisions > 0 ? double(k.tc_collisions) / double(k.collisions) : 0.0);
+  summary.number("tc_wall_collision_fraction",
+                 k.wall_collisions > 0 ? double(k.tc_wall_collisions) / double(k.wall_collisions) : 0.0);
   summary.number("events_per_second", wall_seconds > 0.0 ? (k.events - first_events) / wall_seconds : 0.0);
   summary.number("collisions_per_second",
                  wall_seconds > 0.0 ? (k.collisions - first_collisions) / wall_seconds : 0.0);
