@@ -45,7 +45,7 @@ TEST(FaceKinds, EveryKindHasOneLineWithItsOwnName) {
   }
   EXPECT_EQ(names.size(), std::size(kFaceKinds));
   EXPECT_FALSE(face_kind_named("slippery"));
-  EXPECT_EQ(face_kind_names("or"), "periodic, wall, bumpy or open");
+  EXPECT_EQ(face_kind_names(" or "), "periodic, wall, bumpy or open");
   // A plane wall stands on the wall and bumpy faces only.
   EXPECT_TRUE(holds_wall(FaceKind::wall) && holds_wall(FaceKind::bumpy));
   EXPECT_FALSE(holds_wall(FaceKind::periodic) || holds_wall(FaceKind::open));

@@ -29,7 +29,7 @@ void read_boundaries(TomlReader& domain, DomainConfig& out) {
     const std::string key = std::string("boundary.") + axes[axis];
     FaceKind lo = FaceKind::periodic, hi = FaceKind::periodic;
     if (!node) {
-      domain.fail(key, "is required (" + face_kind_names("or") + ")");
+      domain.fail(key, "is required (" + face_kind_names(" or ") + ")");
     } else if (auto s = node->as_string()) {
       lo = hi = parse_face_kind(domain, key, s->get());
     } else if (auto a = node->as_array(); a && a->size() == 2 && a->get(0)->is_string() && a->get(1)->is_string()) {

@@ -37,14 +37,11 @@ inline std::optional<FaceKind> face_kind_named(std::string_view name) {
     if (name == e.name) return e.kind;
   return std::nullopt;
 }
-// "periodic, wall, bumpy, open", or with `last` between the last two ("... bumpy or open").
-inline std::string face_kind_names(const char* last = ",") {
+// "periodic, wall, bumpy, open", or with `last` before the last name ("periodic, wall, bumpy or open").
+inline std::string face_kind_names(std::string_view last = ", ") {
   std::string out;
   const std::size_t n = std::size(kFaceKinds);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i > 0) out += i + 1 == n && std::string_view(last) != "," ? std::string(" ") + last + " " : std::string(", ");
-    out += kFaceKinds[i].name;
-  }
+  for (std::size_t i = 0; i < n; ++i) out += std::string(i == 0 ? "" : i + 1 == n ? last : ", ") + kFaceKinds[i].name;
   return out;
 }
 inline bool holds_wall(FaceKind kind) { return face_kind_entry(kind).holds_wall; }

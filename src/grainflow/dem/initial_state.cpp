@@ -114,13 +114,10 @@ void place_lattice(const CaseConfig& c, DemState& s, std::mt19937_64& rng, doubl
       }
 }
 
-double expansion_time(const CaseConfig& c) {
-  return c.particles.expansion_time >= 0.0 ? c.particles.expansion_time : derive(c).expansion_time;
-}
-
 // Random centres (a radius clear of solid faces and bumps), then each radius shrunk to its share of
-// the nearest-neighbor distance; radii grow back at one constant rate over expansion_time (section 2.2).
-void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
+// the nearest-neighbor distance; radii grow back at one constant rate over `expansion_time` s
+// (section 2.2: particles.expansion_time or its default, DerivedQuantities::expansion_time).
+void place_random(const CaseConfig& c, double expansion_time, DemState& s, std::mt19937_64& rng) {
   const Vec3 lo = region_lo(c), hi = region_hi(c);
   const auto sequence = species_sequence(c, rng);
   const std::size_t first = s.particles.size();
@@ -190,8 +187,7 @@ void place_random(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
     largest_deficit = std::max(largest_deficit, p.target_radius[i] - p.radius[i]);
   }
   if (largest_deficit > 0.0) {
-    const double duration = expansion_time(c);
-    s.expansion_rate = duration > 0.0 ? largest_deficit / duration : std::numeric_limits<double>::infinity();
+    s.expansion_rate = expansion_time > 0.0 ? largest_deficit / expansion_time : std::numeric_limits<double>::infinity();
   }
 }
 
@@ -245,7 +241,7 @@ DemState build_dem_state(const CaseConfig& c) {
   } else if (c.particles.init == "lattice") {
     place_lattice(c, s, rng, d.max_diameter);
   } else {
-    place_random(c, s, rng);
+    place_random(c, d.expansion_time, s, rng);
   }
   thermalise(c, s, rng);
   for (std::size_t i = 0; i < s.particles.size(); ++i) s.box.wrap(s.particles.position[i], s.particles.image[i]);

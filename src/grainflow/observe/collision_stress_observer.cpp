@@ -48,10 +48,9 @@ void CollisionStressObserver::sample(const Frame& now) {
   ++next_;
   frame_ = &now;
   const double t = now.time;
-  const StripGrid grid = strips_.grid_at(now, t);
   if (!started_) {
     if (!(t > c_.output.average_start && now.collisions >= c_.output.average_start_collisions)) return;
-    stress_.begin(grid, *now.particles, t);
+    stress_.begin(strips_.grid_at(now, t), *now.particles, t);
     started_ = true;
     last_ = t;
     return;

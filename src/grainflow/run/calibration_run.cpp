@@ -116,6 +116,7 @@ class CalibrationRun {
   CaseConfig probe;
   std::string stiffness_key;
   std::optional<double> hertz_k1;
+  double expansion_time = 0.0;  // s, the trials' radius expansion
   double start_k1 = 0.0;
   std::string start_rule;
   double duration = 0.0;
@@ -141,6 +142,7 @@ CalibrationRun::CalibrationRun(const CalibrationOptions& options) : o(options) {
                          "\" is not supported");
   stiffness_key = "contact." + probe_derived.stiffness_key;
   hertz_k1 = probe_derived.hertz_k1;
+  expansion_time = probe_derived.expansion_time;
   duration = o.duration.value_or(probe.run.duration);
   choose_start(probe.species[probe_derived.reference_species]);
   // The first trial's case now: an invalid case stops here, before anything is written.
@@ -193,11 +195,10 @@ void CalibrationRun::warn_of_the_case() {
     warnings.push_back(fmt::format("the trials end at {:.6g} s, before the drive reaches its full amplitude at "
                                    "drive.start + drive.ramp = {:.6g} s: the hardest impacts may be missed",
                                    duration, probe.drive.start + probe.drive.ramp));
-  const double expansion = dem::derive(probe).expansion_time;
-  if (probe.particles.init == "random" && duration <= expansion)
+  if (probe.particles.init == "random" && duration <= expansion_time)
     warnings.push_back(fmt::format("the trials end within the radius expansion (particles.expansion_time = {:.6g} s), "
                                    "which the overlap monitor ignores: every trial will pass",
-                                   expansion));
+                                   expansion_time));
   for (const auto& w : warnings) std::cerr << "grainflow: warning: " << w << "\n";
 }
 

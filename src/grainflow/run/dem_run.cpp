@@ -200,14 +200,15 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
 
   axis = derived.gravity_axis;
-  for (int a = 0; a < 3; ++a)
-    if (a != axis) area *= c.domain.length(a);
   total_steps = static_cast<long>(std::llround(c.run.duration / dt));
 
   context = observe::RunContext{&c, 3, axis, derived.reference_diameter, dt, derived.restitution, dir, writes,
                                 rank_reduce, &comm};
-  zones_now.emplace(observe::ZoneLayout(context).profile(context));
-  observers = make_observers(EngineKind::dem, context, frame_of(initial));
+  const observe::ZoneLayout zones(context);
+  area = zones.area;
+  zones_now.emplace(zones.profile(context));
+  frame = frame_of(initial);  // every particle, before the decomposition; bound to the engine in start()
+  observers = make_observers(EngineKind::dem, context, frame);
   sink = observe::OutputSink{dir, writes, &summary, &warnings};
 
   if (ranks) domain = dem::EngineDomain{&comm, dem_grid(initial, comm.size())};
