@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "grainflow/edmd/couette_servo.hpp"
 #include "grainflow/run/case_loader.hpp"
@@ -58,10 +59,16 @@ TEST(CouetteServo, StartsFromTheCellsGeometry) {
 }
 
 // Listing COL002 in Campbell's units: v' = v/2 + (sigma_measured - sigma_target), clipped to
-// +-sigma_target; both walls move at v' (apart when the cell is over-pressed), the top wall keeps
-// U_T / H = 1/24, the width grows at aspect x 2 v'. Then impulses count afresh.
-TEST(CouetteServo, UpdateFollowsListingCol002) {
-  EdmdState s = build_edmd_state(load_case_from_string(kCell, "servo.toml"));
+// +-sigma_target; both walls move at v' (apart when the cell is over-pressed), the walls keep
+// U_T / H = 1/24, the width grows at aspect x 2 v'. Then impulses count afresh. The shear rate is
+// kept by the top wall alone (the listing, "top") or by both symmetrically about their mean speed,
+// U_T / 2 = 0.5 here ("both", the default).
+class CouetteServoWalls : public testing::TestWithParam<const char*> {};
+INSTANTIATE_TEST_SUITE_P(ShearRateWalls, CouetteServoWalls, testing::Values("both", "top"));
+
+TEST_P(CouetteServoWalls, UpdateFollowsListingCol002) {
+  const std::string walls = GetParam();
+  EdmdState s = build_edmd_state(load_case_from_string(kCell, "servo.toml", {"servo.shear_rate_walls=\"" + walls + "\""}));
   CouetteServo servo(s);
   const double target = s.servo.normal_stress / s.stress_unit;
   for (const double measured_over_target : {1.5, 0.9, 20.0}) {
@@ -85,7 +92,11 @@ TEST(CouetteServo, UpdateFollowsListingCol002) {
     const auto top = std::find_if(s.walls.begin(), s.walls.end(), [](const EdmdWall& w) { return w.face == 3; });
     EXPECT_DOUBLE_EQ(bottom->velocity.y, -expected);
     EXPECT_DOUBLE_EQ(top->velocity.y, expected);
-    EXPECT_NEAR(top->velocity.x, gap_before / 24.0, 1e-12);  // U_T / H kept
+    EXPECT_NEAR(top->velocity.x - bottom->velocity.x, gap_before / 24.0, 1e-12);  // U_T / H kept
+    if (walls == "top")
+      EXPECT_EQ(bottom->velocity.x, 0.0);
+    else
+      EXPECT_NEAR(0.5 * (top->velocity.x + bottom->velocity.x), 0.5, 1e-12);
     EXPECT_NEAR(servo.width_rate(), 9.6 / 24.0 * 2.0 * expected, 1e-15);
     if (measured_over_target == 20.0) {
       EXPECT_DOUBLE_EQ(expected, target * s.speed_unit);  // clipped

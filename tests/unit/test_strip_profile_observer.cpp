@@ -46,5 +46,43 @@ TEST(StripProfileObserver, SavageJeffreySOfEachStripAndTheirMean) {
   }
 }
 
+// Unbounded simple shear (Lees-Edwards, periodic along y): rows of spheres every quarter diameter
+// move exactly on the imposed profile u = shear (y - H/2). The arrangement repeats every strip, so
+// every strip, the two at the seam included, must have the same spread of u (the profile's own
+// variation across a strip) and the mean u of its centre. A sphere straddling the seam counts in
+// the strips at the other end as its image, which moves at u + shear H (above) or u - shear H
+// (below); counted with its own velocity it would add a jump of shear H to those strips.
+TEST(StripProfileObserver, LeesEdwardsSeamStripsEqualTheInterior) {
+  test::ObserverFixture f;
+  f.c.output.average_start = 0.0;
+  f.c.output.interval = 1.0;
+  const double shear = 50.0, height = 0.01;  // 1/s, m
+  f.c.lees_edwards_rate = shear;
+  f.box.periodic = {true, true, true};
+  std::uint32_t id = 0;
+  for (int row = 0; row < 40; ++row) {
+    const double y = (row + 0.5) * 0.25e-3;
+    f.add(id++, {0.001 + 0.2e-3 * row, y, 0.005}, {shear * (y - 0.5 * height), 0.0, 0.0});
+  }
+  const observe::RunContext run = f.context(0.0);
+  observe::StripProfileObserver profiles(run, f.at(0.0));
+  profiles.sample(f.at(0.1));
+  const auto strips = profiles.strip_kinematics();
+  ASSERT_EQ(strips.size(), 10u);
+  const double spread = strips[5].averages.value[observe::strip::u_variance];
+  EXPECT_GT(spread, 0.0);
+  for (std::size_t k = 0; k < strips.size(); ++k) {
+    const auto& a = strips[k].averages;
+    // Round-off of sums of ~10 shares of speeds up to shear H/2 = 0.25 m/s.
+    EXPECT_NEAR(a.value[observe::strip::u], shear * (a.centre - 0.5 * height), 1e-12) << "strip " << k;
+    EXPECT_NEAR(a.value[observe::strip::u_variance], spread, 1e-9 * spread) << "strip " << k;
+    EXPECT_NEAR(a.value[observe::strip::temperature_lan], strips[5].averages.value[observe::strip::temperature_lan],
+                1e-9 * spread)
+        << "strip " << k;
+    EXPECT_NEAR(a.value[observe::strip::solids_fraction], strips[5].averages.value[observe::strip::solids_fraction], 1e-12)
+        << "strip " << k;
+  }
+}
+
 }  // namespace
 }  // namespace grainflow

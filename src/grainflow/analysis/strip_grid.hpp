@@ -4,14 +4,17 @@
 // the exact share of its area (discs) or volume (spheres) lying there; a collision's branch vector
 // counts with the share of its length lying there (the stress carried across by the collision).
 // Along a periodic axis (Lees-Edwards) the strips span exactly one period and a particle straddling
-// the seam counts in the strips at both ends (set_period).
+// the seam counts in the strips at both ends (set_period); the share beyond the seam is its image,
+// which moves with the image row's velocity (Lees-Edwards: the boundaries' velocity jump).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "grainflow/analysis/partial_volume.hpp"
+#include "grainflow/core/vec3.hpp"
 
 namespace grainflow::observe {
 
@@ -32,8 +35,14 @@ class StripGrid {
   }
 
   // The box's period along the axis, when the strips span it exactly; 0: not periodic.
-  void set_period(double period) { period_ = period; }
+  // `image_velocity`: how fast the image one period above moves relative to the particle (the
+  // Lees-Edwards velocity jump, shear rate x period along the flow; zero in a plain periodic box).
+  void set_period(double period, const Vec3& image_velocity = {}) {
+    period_ = period;
+    image_velocity_ = image_velocity;
+  }
   double period() const { return period_; }
+  const Vec3& image_velocity() const { return image_velocity_; }
 
   int dimension() const { return dimension_; }
   int axis() const { return axis_; }
@@ -52,15 +61,16 @@ class StripGrid {
     return std::min(count_ - 1, static_cast<int>((y - lo_) / thickness_));
   }
 
-  // visit(strip, part, fraction): the particle's area (2D) or volume (3D) in each strip it overlaps,
-  // and that part as a fraction of the whole particle.
+  // visit(strip, part, fraction[, velocity_shift]): the particle's area (2D) or volume (3D) in each
+  // strip it overlaps, that part as a fraction of the whole particle, and (when visit takes it) what
+  // to add to the particle's velocity there: zero, or across the seam the image row's velocity.
   template <class Visit>
   void for_each_overlap(double centre, double radius, Visit&& visit) const {
     const double whole = dimension_ == 2 ? M_PI * radius * radius : 4.0 / 3.0 * M_PI * radius * radius * radius;
-    overlap_at(centre, radius, whole, visit);
-    if (period_ > 0.0) {  // the part beyond the seam, counted at the other end
-      if (centre - radius < lo_) overlap_at(centre + period_, radius, whole, visit);
-      if (centre + radius > hi_) overlap_at(centre - period_, radius, whole, visit);
+    overlap_at(centre, radius, whole, Vec3{}, visit);
+    if (period_ > 0.0) {  // the part beyond the seam is the image counted at the other end
+      if (centre - radius < lo_) overlap_at(centre + period_, radius, whole, image_velocity_, visit);
+      if (centre + radius > hi_) overlap_at(centre - period_, radius, whole, -image_velocity_, visit);
     }
   }
 
@@ -83,17 +93,22 @@ class StripGrid {
 
  private:
   template <class Visit>
-  void overlap_at(double centre, double radius, double whole, Visit& visit) const {
+  void overlap_at(double centre, double radius, double whole, const Vec3& shift, Visit& visit) const {
     const int first = std::max(0, static_cast<int>(std::floor((centre - radius - lo_) / thickness_)));
     const int last = std::min(count_ - 1, static_cast<int>(std::floor((centre + radius - lo_) / thickness_)));
     for (int k = first; k <= last; ++k) {
       const double part = particle_slab_measure(dimension_, radius, centre, strip_lo(k), strip_lo(k) + thickness_);
-      if (part > 0.0) visit(k, part, part / whole);
+      if (!(part > 0.0)) continue;
+      if constexpr (std::is_invocable_v<Visit&, int, double, double, const Vec3&>)
+        visit(k, part, part / whole, shift);
+      else
+        visit(k, part, part / whole);
     }
   }
 
   int dimension_, axis_, count_;
   double lo_ = 0.0, hi_ = 0.0, thickness_ = 0.0, cross_section_ = 0.0, period_ = 0.0;
+  Vec3 image_velocity_;
 };
 
 }  // namespace grainflow::observe

@@ -290,6 +290,9 @@ void read_servo(TomlReader& top, CaseConfig& c) {
     v.normal_stress = r.required_number("normal_stress");
     if (!(v.normal_stress > 0.0)) r.fail("normal_stress", "must be positive");
     v.keep_shear_rate = r.boolean("keep_shear_rate", true);
+    v.shear_rate_walls = r.string("shear_rate_walls", v.shear_rate_walls);
+    if (v.shear_rate_walls != "both" && v.shear_rate_walls != "top")
+      r.fail("shear_rate_walls", "must be \"both\" (symmetric about the walls' mean velocity) or \"top\" (listing COL002)");
     v.scale_width = r.boolean("scale_width", true);
     v.every_collisions = r.integer("every_collisions", 0);
     if (v.every_collisions < 0) r.fail("every_collisions", "must not be negative");

@@ -151,6 +151,7 @@ void write_optional_tables(Out& o, const CaseConfig& c) {
     o.table("servo");
     o.key("normal_stress", v.normal_stress);
     o.key("keep_shear_rate", v.keep_shear_rate);
+    o.text_key("shear_rate_walls", v.shear_rate_walls);
     o.key("scale_width", v.scale_width);
     o.key("every_collisions", v.every_collisions);
     o.key("gap_change", v.gap_change);

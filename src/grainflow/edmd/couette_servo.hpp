@@ -70,8 +70,8 @@ class CouetteServo {
     return true;
   }
 
-  // Both walls move at the measured speed from now (particles are current); the top wall keeps the
-  // shear rate; the width law restarts from now. True when the width now changes (the engine's
+  // Both walls move at the measured speed from now (particles are current); their speeds along x
+  // keep the shear rate; the width law restarts from now. True when the width now changes (the engine's
   // cell grid must follow).
   bool move_walls(EdmdState& s) {
     const double now = s.time;
@@ -82,12 +82,28 @@ class CouetteServo {
       wall.since = now;
       wall.velocity.y = w == bottom_wall_ ? -speed_ : speed_;
     }
-    if (s.servo.keep_shear_rate) s.walls[top_wall_].velocity.x = s.walls[bottom_wall_].velocity.x + shear_rate_ * new_gap_;
+    if (s.servo.keep_shear_rate) keep_shear_rate(s);
     if (!s.servo.scale_width) return false;
     width_ref_ = width_at(now);
     width_since_ = now;
     width_rate_ = aspect_ * 2.0 * speed_;
     return true;
+  }
+
+  // U_T = shear rate x gap. Campbell's listing resets the top wall's speed alone; each reset is a
+  // jump in the top wall's speed that heats the top side only, so by default both walls' speeds
+  // change by half the jump, in opposite senses, and the walls' mean velocity stays.
+  void keep_shear_rate(EdmdState& s) const {
+    double& bottom = s.walls[bottom_wall_].velocity.x;
+    double& top = s.walls[top_wall_].velocity.x;
+    const double relative = shear_rate_ * new_gap_;
+    if (s.servo.shear_rate_walls == "top") {
+      top = bottom + relative;
+      return;
+    }
+    const double mean = 0.5 * (bottom + top);
+    bottom = mean - 0.5 * relative;
+    top = mean + 0.5 * relative;
   }
 
   // The update's record, once the box has its new width; impulses count afresh from here.

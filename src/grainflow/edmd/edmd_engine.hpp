@@ -30,6 +30,7 @@
 #include "grainflow/edmd/flight.hpp"
 #include "grainflow/edmd/free_flight.hpp"
 #include "grainflow/edmd/lees_edwards.hpp"
+#include "grainflow/observe/energy_budget.hpp"
 #include "grainflow/edmd/neighbor_lists.hpp"
 #include "grainflow/edmd/rolling.hpp"
 #include "grainflow/edmd/stall_detector.hpp"
@@ -66,6 +67,22 @@ class EdmdEngine {
     if (use_lists_) lists_.build(s_.box, grid_, flight_, s_.particles.radius);
     for (std::size_t i = 0; i < n; ++i) predict(static_cast<std::uint32_t>(i));
     queue_.reset(n, &event_time_);
+    counters_.start_energy = observe::mechanical_energy(p, s_.box, s_.gravity);
+    counters_.start_periodic_potential = observe::periodic_potential(p, s_.box, s_.gravity);
+  }
+
+  // The energy budget since the start (observe/energy_budget.hpp). Particles must be current (after
+  // advance_to). Collisions' losses are measured in the frame of the wall or image met, so the
+  // walls' and images' work is the lab-frame energy change beyond that loss: W . J per collision.
+  observe::EnergyBudget energy_budget() const {
+    observe::EnergyBudget b;
+    b.gravity_work = counters_.start_periodic_potential - observe::periodic_potential(s_.particles, s_.box, s_.gravity) +
+                     counters_.gravity_shift_work;
+    b.wall_work = counters_.wall_work;
+    b.boundary_work = counters_.boundary_work;
+    b.change = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) - counters_.start_energy;
+    b.dissipated = counters_.dissipated;
+    return b;
   }
 
   EdmdState& state() { return s_; }
@@ -502,6 +519,7 @@ class EdmdEngine {
     tc_.note_collision(j, s_.time);
     counters_.virial += dot(dr, impulse);
     counters_.dissipated += lost;
+    counters_.boundary_work += dot(frame, impulse);  // j's image moved at `frame`: zero inside the box
     ++flight_[i].count;
     ++flight_[j].count;
     ++counters_.collisions;
@@ -539,6 +557,7 @@ class EdmdEngine {
     tc_.note_collision(i, s_.time);
     const double lost = before - kinetic_energy(i, wall.velocity);
     counters_.dissipated += lost;
+    counters_.wall_work += dot(wall.velocity, impulse);
     ++flight_[i].count;
     ++counters_.wall_collisions;
     if (observer_ != nullptr) [[unlikely]] report_wall(i, w, normal, impulse, condition, lost);
@@ -558,10 +577,14 @@ class EdmdEngine {
     ParticleStore& p = s_.particles;
     const double rebound = wall.inward * (flight_[i].v[wall.axis] - wall.velocity[wall.axis]);
     if (rebound >= s_.rolling_speed || wall.velocity[wall.axis] != 0.0) return;
+    // The normal rebound, the spin that does not roll and the gap to the wall go: a last, perfectly
+    // inelastic impact, whose energy counts as dissipated.
+    const double before = particle_energy(i);
     flight_[i].v[wall.axis] = wall.velocity[wall.axis];
     flight_[i].x[wall.axis] = wall.at(s_.time) + wall.inward * p.radius[i];
     rolling_.set(i, w);
     roll_without_slip(i);
+    counters_.dissipated += before - particle_energy(i);
     ++flight_[i].count;
     ++counters_.rolling_starts;
   }
@@ -577,14 +600,20 @@ class EdmdEngine {
       p.image[i][axis] += k;
       c[axis] -= k * grid_.count(axis);
       if (axis == 1 && images_.sliding()) {
-        // Lees–Edwards: the particle becomes its image in the sliding row, shifted and moving with it.
+        // Lees–Edwards: the particle becomes its image in the sliding row, shifted and moving with it;
+        // the boundary's work is the energy of that change of velocity.
+        const double before = kinetic_energy(i);
+        counters_.gravity_shift_work += p.mass[i] * s_.gravity.x * k * images_.offset(s_.box.length(0), s_.time);
         p.image[i][0] += static_cast<std::int32_t>(images_.enter_row(s_.box, k, s_.time, flight_[i].x, flight_[i].v));
+        counters_.boundary_work += kinetic_energy(i) - before;
         ++flight_[i].count;
         grid_.move(flight_, static_cast<int>(i), grid_.cell_of(s_.box, flight_[i].x));
         return;
       }
       if (axis == 0 && servo_.width_rate() != 0.0) {
+        const double before = kinetic_energy(i);
         flight_[i].v.x -= k * servo_.width_rate();  // it becomes its image, which moves with the width rate
+        counters_.boundary_work += kinetic_energy(i) - before;
         ++flight_[i].count;
       }
     }
@@ -595,6 +624,11 @@ class EdmdEngine {
   double kinetic_energy(std::uint32_t i, const Vec3& frame = {}) const {
     const ParticleStore& p = s_.particles;
     return 0.5 * p.mass[i] * norm2(flight_[i].v - frame) + 0.5 * norm2(p.angular_velocity[i]) / p.inv_inertia[i];
+  }
+
+  // Its kinetic energy and potential along the bounded axes (observe/energy_budget.hpp).
+  double particle_energy(std::uint32_t i) const {
+    return kinetic_energy(i) + observe::bounded_potential(s_.box, s_.gravity, s_.particles.mass[i], flight_[i].x);
   }
 
   EdmdState s_;

@@ -12,7 +12,16 @@ struct EventCounters {
   long long list_rebuilds = 0;   // neighbour-list rebuilds (the list path has these instead of cell crossings)
   long long rolling_starts = 0;  // wall rebounds too slow to bounce: the particle rolls
   double virial = 0.0;           // sum over collisions of r_ij . J_i (kg m^2/s), for the pressure
-  double dissipated = 0.0;       // J lost in collisions
+  double dissipated = 0.0;       // J lost in collisions (and in the last impact of a particle starting to roll)
+  // The energy budget (observe/energy_budget.hpp): work done on the particles by moving walls and
+  // by images that move (Lees-Edwards rows, a Couette cell's width), J since the start; gravity's
+  // work along x carried by Lees-Edwards shifts (the unwrapped x jumps by the row offset); and the
+  // energies at the start the changes are measured from.
+  double wall_work = 0.0;
+  double boundary_work = 0.0;
+  double gravity_shift_work = 0.0;
+  double start_energy = 0.0;             // J, kinetic + rotational + bounded potential
+  double start_periodic_potential = 0.0; // J
   long long servo_updates = 0;   // pressure-servo wall speed changes
   long long tc_collisions = 0;   // particle-particle collisions the TC model made elastic and smooth
   long long tc_wall_collisions = 0;

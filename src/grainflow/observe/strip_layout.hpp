@@ -19,7 +19,7 @@ class StripLayout {
   static constexpr int kAxis = 1;  // y: the velocity gradient (flow along x)
   static constexpr int kMaxStrips = 1000;  // block-averaged sums keep up to 512 copies of every strip
 
-  StripLayout(const CaseConfig& c, const Frame& s) : dimension_(s.dimension) {
+  StripLayout(const CaseConfig& c, const Frame& s) : dimension_(s.dimension), lees_edwards_rate_(c.lees_edwards_rate) {
     for (std::size_t w = 0; w < s.walls.size(); ++w) {
       if (s.walls[w].face == 2) bottom_ = static_cast<int>(w);
       if (s.walls[w].face == 3) top_ = static_cast<int>(w);
@@ -41,7 +41,8 @@ class StripLayout {
     double cross_section = s.box->length(0);
     if (dimension_ == 3) cross_section *= s.box->length(2);
     StripGrid grid(dimension_, kAxis, lo, hi, count_, cross_section);
-    if (top_ < 0 && bottom_ < 0 && s.box->periodic[kAxis]) grid.set_period(s.box->length(kAxis));
+    if (top_ < 0 && bottom_ < 0 && s.box->periodic[kAxis])
+      grid.set_period(s.box->length(kAxis), Vec3{lees_edwards_rate_ * s.box->length(kAxis), 0.0, 0.0});
     return grid;
   }
 
@@ -56,6 +57,7 @@ class StripLayout {
   }
 
   int dimension_;
+  double lees_edwards_rate_;  // 1/s: the image row above moves at this rate x the height
   int bottom_ = -1, top_ = -1;  // wall indices at ylo and yhi, -1 when none
   int count_ = 1;
   double top_height_ = 0.0;     // m, the top of the strips without a top wall

@@ -33,10 +33,11 @@ void StripProfile::sample(const ParticleStore& p, const StripGrid& grid) {
   // Pass 1: shares of solid measure, mass, momentum and spin in each strip.
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.motion[i] != Motion::free) continue;
-    const Vec3 v = p.velocity[i], w = p.angular_velocity[i];
+    const Vec3 w = p.angular_velocity[i];
     const double inertia = p.inv_inertia[i] > 0.0 ? 1.0 / p.inv_inertia[i] : 0.0;
-    grid.for_each_overlap(p.position[i][axis], p.radius[i], [&](int k, double part, double fraction) {
+    grid.for_each_overlap(p.position[i][axis], p.radius[i], [&](int k, double part, double fraction, const Vec3& shift) {
       Sums& s = scratch_[k];
+      const Vec3 v = p.velocity[i] + shift;  // across a Lees-Edwards seam, the image's velocity
       const double m = p.mass[i] * fraction, moment = inertia * fraction;
       s.solids_fraction += part / measure;
       s.mass += m;
@@ -53,9 +54,9 @@ void StripProfile::sample(const ParticleStore& p, const StripGrid& grid) {
   // Pass 2: Lan's fluctuations about each strip's mean velocity at this instant.
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.motion[i] != Motion::free) continue;
-    grid.for_each_overlap(p.position[i][axis], p.radius[i], [&](int k, double, double fraction) {
+    grid.for_each_overlap(p.position[i][axis], p.radius[i], [&](int k, double, double fraction, const Vec3& shift) {
       Sums& s = scratch_[k];
-      const Vec3 dv = p.velocity[i] - s.momentum * (1.0 / s.mass);
+      const Vec3 dv = p.velocity[i] + shift - s.momentum * (1.0 / s.mass);
       double sum = 0.0;
       for (int a = 0; a < dimension_; ++a) sum += dv[a] * dv[a];
       s.fluctuation_lan += p.mass[i] * fraction * sum;

@@ -36,6 +36,8 @@ struct Row {
   long long collisions, wall_collisions, events;
   double pressure;      // over the interval ending at `time`: kinetic (instantaneous) + collisional
   double dissipated;    // J since the start
+  observe::EnergyBudget budget;
+  double budget_residual;
   edmd::ServoState servo;
 };
 
@@ -184,6 +186,8 @@ void EdmdRun::record(E& e) {
   r.wall_collisions = k.wall_collisions;
   r.events = k.events;
   r.dissipated = k.dissipated;
+  r.budget = e.energy_budget();
+  r.budget_residual = r.budget.residual(k.start_energy);
   r.servo = e.servo();
   const double span = st.time - last_time;
   // Kinetic part from velocities about the mass-mean one (as the temperature), so a mean flow is
@@ -306,16 +310,21 @@ int EdmdRun::run() {
 void EdmdRun::write_timeseries() const {
   io::write_atomically(dir + "/timeseries.csv", [&](std::ostream& out) {
     out << "# units: time s, energies J, granular_temperature m^2/s^2 (per degree of freedom), pressure "
-        << (dim == 2 ? "N/m" : "Pa") << " (kinetic + collisional virial over the interval), dissipated J\n";
+        << (dim == 2 ? "N/m" : "Pa")
+        << " (kinetic + collisional virial over the interval), dissipated J; energy budget since the start:"
+           " energy_input (gravity along periodic axes, walls, boundaries), energy_change (kinetic + rotational +"
+           " potential), energy_dissipated J, energy_budget_residual (input - change - dissipated) / max(|input|,"
+           " |dissipated|)\n";
     const bool servo = c.servo.enabled;
     if (servo) out << "# servo: gap and width m, wall_speed m/s (> 0 opening), wall_stress as pressure, top_speed m/s\n";
     out << "time,kinetic_energy,rotational_energy,granular_temperature,collisions,wall_collisions,events,pressure,"
-           "dissipated"
+           "dissipated,energy_input,energy_change,energy_dissipated,energy_budget_residual"
         << (servo ? ",gap,width,wall_speed,wall_stress,top_speed" : "") << "\n";
     for (const auto& r : rows) {
       out << r.time << ',' << r.global.kinetic_energy << ',' << r.global.rotational_energy << ','
           << r.global.granular_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.events
-          << ',' << r.pressure << ',' << r.dissipated;
+          << ',' << r.pressure << ',' << r.dissipated << ',' << r.budget.input() << ',' << r.budget.change << ','
+          << r.budget.dissipated << ',' << r.budget_residual;
       if (servo)
         out << ',' << r.servo.gap << ',' << r.servo.width << ',' << r.servo.wall_speed << ','
             << r.servo.measured_stress << ',' << r.servo.top_speed;
@@ -377,6 +386,7 @@ void EdmdRun::write_outputs(E& e) {
   summary.number("rotational_energy", global.rotational_energy);
   summary.number("granular_temperature", temperature > 0.0 ? temperature : global.granular_temperature * 3.0 / dim);
   summary.number("dissipated_energy", k.dissipated);
+  write_energy_budget(e.energy_budget(), k.start_energy, summary);
   if (c.servo.enabled) {
     summary.integer("servo_updates", k.servo_updates);
     summary.number("wall_gap", e.servo().gap);

@@ -10,6 +10,7 @@
 
 #include "grainflow/config/case_config.hpp"
 #include "grainflow/io/json_writer.hpp"
+#include "grainflow/observe/energy_budget.hpp"
 #include "grainflow/observe/step_schedule.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
@@ -47,6 +48,11 @@ std::vector<std::string> split_overrides(const std::string& joined);
 // errors on stderr (unless `echo_errors` is false); returns `exit_status`.
 int finish_summary(io::JsonObject& summary, const std::string& dir, const std::vector<std::string>& errors,
                    const std::vector<std::string>& warnings, int exit_status, bool echo_errors = true);
+
+// summary.json's energy budget: energy_input (and its parts energy_input_gravity, _walls,
+// _boundaries), energy_change, energy_dissipated, energy_budget_residual; `fallback_scale` as for
+// EnergyBudget::residual.
+void write_energy_budget(const observe::EnergyBudget& b, double fallback_scale, io::JsonObject& summary);
 
 // final_state.csv: every particle by id, with exact doubles so the state can start another run.
 void write_final_state(const std::string& path, const ParticleStore& p, const std::vector<SpeciesConfig>& species);
