@@ -3,10 +3,14 @@
 // gap (fixed aspect ratio) and the top wall speed follows it too (fixed shear rate U_T / H).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "grainflow/run/case_loader.hpp"
 #include "grainflow/edmd/edmd_engine.hpp"
+#include "grainflow/observe/strip_profile.hpp"
 
 using namespace grainflow;
 
@@ -45,4 +49,34 @@ TEST(EdmdCouetteServo, WallStressSettlesOnTheTargetWithFixedAspectAndShearRate) 
   EXPECT_GT(e.counters().servo_updates, 50);
   EXPECT_NEAR(stress_sum / samples, kTarget, 0.25 * kTarget);
   RecordProperty("mean_wall_stress_over_target", std::to_string(stress_sum / samples / kTarget));
+}
+
+// The cell is symmetric about its middle once the servo keeps the shear rate with both walls (the
+// default): the strips at the two walls have the same temperature. Four seeds, 12 strips
+// following the walls, averaged over t = 8,000-40,000 R/U_T (the start-up transient, hotter at the
+// moving wall, has gone by then): each seed's top/bottom ratio scatters by about 0.1, so their
+// mean must lie within 3 standard errors of the seeds' spread (and 0.1) of 1.
+TEST(EdmdCouetteServo, SymmetricServoGivesEqualTemperaturesAtTheTwoWalls) {
+  std::vector<double> ratios;
+  for (const int seed : {1, 2, 3, 4}) {
+    const CaseConfig c = load_case_from_string(kCouette, "couette.toml", {"particles.seed=" + std::to_string(seed)});
+    edmd::EdmdEngine<2> e(edmd::build_edmd_state(c));
+    observe::StripProfile profile(2, 12);
+    const auto& walls = e.state().walls;
+    const int bottom = walls[0].face == 2 ? 0 : 1, top = 1 - bottom;
+    for (double t = 8000.0; t <= 40000.0; t += 2.0) {
+      e.advance_to(t);
+      const observe::StripGrid grid(2, 1, walls[bottom].at(t), walls[top].at(t), 12, e.state().box.length(0));
+      profile.sample(e.state().particles, grid);
+    }
+    const auto strips = profile.averages();
+    ratios.push_back(strips.back().value[observe::strip::granular_temperature] /
+                     strips.front().value[observe::strip::granular_temperature]);
+  }
+  double mean = 0.0, spread = 0.0;
+  for (double r : ratios) mean += r / ratios.size();
+  for (double r : ratios) spread += (r - mean) * (r - mean) / (ratios.size() - 1);
+  const double standard_error = std::sqrt(spread / ratios.size());
+  EXPECT_NEAR(mean, 1.0, std::max(3.0 * standard_error, 0.1));
+  RecordProperty("top_over_bottom_temperature", std::to_string(mean));
 }
