@@ -8,6 +8,9 @@
   row per output interval, counters that never decrease and end at the summary's; final_state.csv
   with 40 discs, none overlapping another or the floor.
 - `--set run.collisions=N` stops the chute at the first output time after N collisions.
+- `run.protocol = "campbell"` runs the chute in segments of at most `segment_collisions` collisions
+  (to the first output after the budget), stops after `max_segments` with a warning when none
+  converged, and otherwise at the first segment steady throughout by the section 2.5 check.
 - An elastic hard-disc gas run through the CLI reports a compressibility factor that matches
   Henderson's equation of state Z = (1 + phi^2/8) / (1 - phi)^2 (the summary's virial pressure,
   end to end).
@@ -132,6 +135,50 @@ def check_run_in_collisions(exe, tmp):
     check(len(rows) >= 2 and int(rows[-2]["collisions"]) < target,
           f"run.collisions: did not stop at the first output after {target} collisions "
           f"({[r['collisions'] for r in rows[-2:]]})")
+
+
+def check_campbell_protocol(exe, tmp):
+    # Segments of 20,000 collisions, at most 3: the 30 degree chute is still accelerating then, so
+    # no segment passes the check; each ends at the first output row past its budget.
+    budget, most = 20000, 3
+    out = os.path.join(tmp, "chute_segments")
+    status, _, err = run(exe, "run", CHUTE, "-o", out, "--quiet", "--set", 'run.protocol="campbell"', "--set",
+                         f"run.segment_collisions={budget}", "--set", f"run.max_segments={most}")
+    if not check(status == 0, f"campbell protocol: exited {status}: {err.strip()}"):
+        return
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    rows = read_csv(os.path.join(out, "timeseries.csv"))
+    collisions = [int(r["collisions"]) for r in rows]
+    per_row = max(b - a for a, b in zip(collisions, collisions[1:]))
+    check(summary["protocol"] == "campbell", f"campbell protocol: protocol {summary.get('protocol')!r}")
+    check(summary["segments"] == most and not summary["segment_converged"],
+          f"campbell protocol: {summary['segments']} segments, converged {summary['segment_converged']}: expected "
+          f"{most}, not converged (the chute still accelerates)")
+    check(budget <= summary["segment_collisions"] < budget + per_row,
+          f"campbell protocol: last segment {summary['segment_collisions']} collisions, budget {budget} "
+          f"(+ at most one row's {per_row})")
+    check(most * budget <= summary["collisions"] < most * (budget + per_row),
+          f"campbell protocol: {summary['collisions']} collisions in {most} segments of {budget}")
+    check(any("Campbell's protocol" in w for w in summary["warnings"]),
+          f"campbell protocol: no warning that no segment converged: {summary['warnings']}")
+    # Campbell's own budget of 99,999: a later segment is steady throughout, and the run stops there.
+    out = os.path.join(tmp, "chute_converged")
+    status, _, err = run(exe, "run", CHUTE, "-o", out, "--quiet", "--set", 'run.protocol="campbell"', "--set",
+                         "output.average_start=0")
+    if not check(status == 0, f"campbell protocol (converging): exited {status}: {err.strip()}"):
+        return
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    check(summary["segment_converged"] and summary["steady_from"] == summary["segment_start_time"],
+          f"campbell protocol: converged {summary['segment_converged']}, steady from {summary['steady_from']}, "
+          f"segment from {summary['segment_start_time']}")
+    check(summary["averaged_when_steady"] and summary["warnings"] == [],
+          f"campbell protocol: the converged segment's averages are not the steady ones: {summary['warnings']}")
+    collisions = [int(r["collisions"]) for r in read_csv(os.path.join(out, "timeseries.csv"))]
+    per_row = max(b - a for a, b in zip(collisions, collisions[1:]))
+    check(99999 <= summary["segment_collisions"] < 99999 + per_row,
+          f"campbell protocol: the converged segment has {summary['segment_collisions']} collisions")
 
 
 def check_average_window_in_collisions(exe, tmp):
@@ -321,6 +368,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="grainflow_edmd_") as tmp:
         check_chute(exe, tmp)
         check_run_in_collisions(exe, tmp)
+        check_campbell_protocol(exe, tmp)
         check_average_window_in_collisions(exe, tmp)
         check_hard_disc_pressure(exe, tmp)
         check_bad_inputs(exe, tmp)

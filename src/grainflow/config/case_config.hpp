@@ -138,6 +138,12 @@ struct RunConfig {
   double halt_overlap = 0.0;   // stop when max overlap / d exceeds this (0 = never; seeds: 0.01)
   int sort_every = 20;         // neighbor rebuilds between spatial re-sorts (0 = never)
   long long collisions = 0;    // edmd: stop after this many particle collisions (0 = run the duration)
+  // edmd: "continuous", or "campbell": Campbell's runs of at most `segment_collisions` collisions
+  // (COL001/COL002 count them in an I5 field), each judged by the section 2.5 convergence check;
+  // the first converged segment's averages are the run's, and it stops there.
+  std::string protocol = "continuous";
+  long long segment_collisions = 99999;
+  int max_segments = 20;
 };
 
 struct OutputConfig {

@@ -367,7 +367,18 @@ void read_run(TomlReader& top, CaseConfig& c) {
   run.collisions = r.integer("collisions", 0);
   if (run.collisions < 0) r.fail("collisions", "must not be negative");
   if (run.collisions > 0 && c.engine.kind != "edmd") r.fail("collisions", "only the event-driven engine counts collisions");
-  run.duration = run.collisions > 0 ? r.number("duration", 1e300) : r.required_number("duration");
+  run.protocol = r.string("protocol", run.protocol);
+  if (run.protocol != "continuous" && run.protocol != "campbell")
+    r.fail("protocol", "must be \"continuous\" or \"campbell\" (segments of at most segment_collisions collisions)");
+  const bool segmented = run.protocol == "campbell";
+  if (segmented && c.engine.kind != "edmd") r.fail("protocol", "Campbell's segments count collisions: an event-driven (edmd) protocol");
+  for (const char* key : {"segment_collisions", "max_segments"})
+    if (r.has(key) && !segmented) r.fail(key, "only applies with protocol = \"campbell\"");
+  run.segment_collisions = r.integer("segment_collisions", run.segment_collisions);
+  if (run.segment_collisions < 1) r.fail("segment_collisions", "must be at least 1");
+  run.max_segments = static_cast<int>(r.integer("max_segments", run.max_segments));
+  if (run.max_segments < 1) r.fail("max_segments", "must be at least 1");
+  run.duration = run.collisions > 0 || segmented ? r.number("duration", 1e300) : r.required_number("duration");
   if (!(run.duration > 0.0)) r.fail("duration", "must be positive");
   if (c.engine.kind == "edmd")
     for (const char* key : {"time_step", "collision_steps", "skin", "halt_overlap", "sort_every"})
@@ -419,6 +430,8 @@ void read_output(TomlReader& top, CaseConfig& c) {
 // [trajectory]
 void read_trajectory(TomlReader& top, CaseConfig& c) {
   if (top.has("trajectory")) {
+    if (c.run.protocol == "campbell")
+      top.fail("trajectory", "a trajectory spans the whole run; with run.protocol = \"campbell\" each segment starts its averages afresh");
     TomlReader r = top.table("trajectory");
     auto& t = c.trajectory;
     t.enabled = true;

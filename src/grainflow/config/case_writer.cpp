@@ -179,6 +179,11 @@ void write_run(Out& o, const CaseConfig& c) {
   o.key("duration", r.duration);
   if (c.engine.kind == "edmd") {
     o.key("collisions", r.collisions);
+    o.text_key("protocol", r.protocol);
+    if (r.protocol == "campbell") {
+      o.key("segment_collisions", r.segment_collisions);
+      o.key("max_segments", r.max_segments);
+    }
     return;
   }
   o.key("time_step", r.time_step);

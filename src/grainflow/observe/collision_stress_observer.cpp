@@ -24,7 +24,8 @@ CollisionStressObserver::CollisionStressObserver(const RunContext& run, const Fr
       strips_(*run.c, start),
       stress_(strips_.count(), start.box->periodic[StripLayout::kAxis] ? start.box->length(StripLayout::kAxis) : 0.0),
       walls_(start.walls),
-      interval_(run.c->output.profile_interval > 0.0 ? run.c->output.profile_interval : run.c->output.interval / 10.0) {}
+      interval_(run.c->output.profile_interval > 0.0 ? run.c->output.profile_interval : run.c->output.interval / 10.0),
+      next_(first_grid_index(start.time, interval_)) {}
 
 double CollisionStressObserver::wall_area(int wall) const {
   const int axis = frame_->walls[static_cast<std::size_t>(wall)].axis;

@@ -8,6 +8,8 @@
 #pragma once
 
 #include <cstdint>
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <string>
@@ -29,6 +31,12 @@ inline constexpr double kNoSampleTime = std::numeric_limits<double>::infinity();
 // run, its pointers into the engine's state (which never moves), and refreshes the clock before
 // each call, so an observer may keep a pointer to it (a collision observer reads the walls between
 // samples).
+// The first index k of a sampling grid k * interval at or after `time` (an observer built mid-run,
+// as at the start of one of Campbell's segments, samples from there on).
+inline long first_grid_index(double time, double interval) {
+  return std::max(1L, static_cast<long>(std::floor(time / interval)) + 1);
+}
+
 struct Frame {
   int dimension = 3;
   double time = 0.0;          // s

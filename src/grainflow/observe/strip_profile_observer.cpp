@@ -46,6 +46,7 @@ StripProfileObserver::StripProfileObserver(const RunContext& run, const Frame& s
       profile_(s.dimension, strips_.count()),
       interval_(c_.output.profile_interval > 0.0 ? c_.output.profile_interval : c_.output.interval / 10.0),
       first_sample_(kNaN) {
+  next_ = first_grid_index(s.time, interval_);
   for (std::size_t w = 0; w < s.walls.size(); ++w) {
     if (s.walls[w].face == 2) bottom_wall_ = static_cast<int>(w);
     if (s.walls[w].face == 3) top_wall_ = static_cast<int>(w);

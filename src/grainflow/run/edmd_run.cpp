@@ -11,6 +11,7 @@
 #include <unistd.h>
 #include <variant>
 
+#include "grainflow/analysis/steady_state.hpp"
 #include "grainflow/run/observer_registry.hpp"
 #include "grainflow/run/run_support.hpp"
 #include "grainflow/run/steady_state_report.hpp"
@@ -61,6 +62,7 @@ class EdmdRun {
   template <class E> void bind_frame(E& e);
   template <class E> const observe::Frame& frame_now(E& e);
   template <class E> void listen_to_collisions(E& e);
+  template <class E> bool end_segment(E& e);
   double next_sample_time() const;
   double first_profile_sample() const;
   void write_timeseries() const;
@@ -96,6 +98,13 @@ class EdmdRun {
   long row = 1, shot = 1, checkpoints = 1;
   int interrupted = 0;
   long long first_events = 0, first_collisions = 0;  // before this process (a restart's checkpoint)
+  observe::RunContext context;
+  // Campbell's protocol (run.protocol = "campbell"): the segment under way, where it began (its
+  // first row of `rows`) and whether the last one judged passed the section 2.5 check.
+  int segment = 1;
+  long long segment_start_collisions = 0;
+  std::size_t segment_first_row = 0;
+  bool segment_converged = false;
 };
 
 EdmdRun::EdmdRun(const CaseConfig& case_config, const RunOptions& run_options)
@@ -115,7 +124,7 @@ EdmdRun::EdmdRun(const CaseConfig& case_config, const RunOptions& run_options)
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
   std::visit([&](auto& e) { bind_frame(e); }, *engine);
   const int along_gravity = std::fabs(c.gravity.x) > std::fabs(c.gravity.y) ? 0 : 1;
-  const observe::RunContext context{&c, dim, along_gravity, c.species.front().diameter, 0.0, 0.0, dir, true, {}, nullptr};
+  context = observe::RunContext{&c, dim, along_gravity, c.species.front().diameter, 0.0, 0.0, dir, true, {}, nullptr};
   observers = make_observers(EngineKind::edmd, context, frame);
   sink = observe::OutputSink{dir, true, &summary, &warnings};
   for (int a = 0; a < dim; ++a) measure *= c.domain.length(a);
@@ -213,6 +222,7 @@ void EdmdRun::transfer(io::StateArchive& ar, E& e) {
   ar.tag("edmd run with observers");
   ar(e, rows, last_time, last_virial, average_kinetic, average_temperature, average_virial, average_span, average_rows);
   ar(row, shot, checkpoints);
+  ar(segment, segment_start_collisions, segment_first_row, segment_converged);
   if (snapshots) ar(*snapshots);
   for (auto& o : observers) {
     ar.tag(o->name());
@@ -271,6 +281,9 @@ void EdmdRun::event_loop(E& e) {
       progress->update(t);
       if (t >= end_time) break;
       if (c.run.collisions > 0 && e.counters().collisions >= c.run.collisions) break;
+      if (c.run.protocol == "campbell" && e.counters().collisions - segment_start_collisions >= c.run.segment_collisions &&
+          end_segment(e))
+        break;
       if (checkpoint_interval > 0.0 && t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) {
         while (t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) ++checkpoints;
         checkpoint(e);
@@ -282,6 +295,30 @@ void EdmdRun::event_loop(E& e) {
     e.synchronize(e.state().time);  // the outputs show every particle at one instant
     throw;
   }
+}
+
+// The end of one of Campbell's segments: the section 2.5 check on its kinetic-energy rows. It has
+// converged when the whole segment is steady (no transient to leave out); then, or after the last
+// segment allowed, the run stops (true). Otherwise the next segment starts here with fresh averages,
+// as Campbell's next run started from the last one's final state.
+template <class E>
+bool EdmdRun::end_segment(E& e) {
+  std::vector<double> time, energy;
+  for (std::size_t r = segment_first_row; r < rows.size(); ++r) {
+    time.push_back(rows[r].time);
+    energy.push_back(rows[r].global.kinetic_energy);
+  }
+  const analysis::SteadyState steady = analysis::detect_steady_state(time, energy);
+  segment_converged = steady.steady_from && *steady.steady_from <= time.front();
+  if (segment_converged || segment >= c.run.max_segments) return true;
+  ++segment;
+  segment_start_collisions = e.counters().collisions;
+  segment_first_row = rows.size() - 1;
+  observers = make_observers(EngineKind::edmd, context, frame_now(e));
+  listen_to_collisions(e);
+  average_kinetic = average_temperature = average_virial = average_span = 0.0;
+  average_rows = 0;
+  return false;
 }
 
 int EdmdRun::run() {
@@ -396,7 +433,20 @@ void EdmdRun::write_outputs(E& e) {
   const observe::Frame& last = frame_now(e);
   for (auto& o : observers) o->write(last, sink);
   std::vector<double> row_time, row_energy;
-  for (const auto& r : rows) row_time.push_back(r.time), row_energy.push_back(r.global.kinetic_energy);
+  const bool segmented = c.run.protocol == "campbell";
+  for (std::size_t r = segmented ? segment_first_row : 0; r < rows.size(); ++r)
+    row_time.push_back(rows[r].time), row_energy.push_back(rows[r].global.kinetic_energy);
+  summary.string("protocol", c.run.protocol);
+  if (segmented) {
+    summary.integer("segments", segment);
+    summary.boolean("segment_converged", segment_converged);
+    summary.number("segment_start_time", rows[segment_first_row].time);
+    summary.integer("segment_collisions", k.collisions - segment_start_collisions);
+    if (!segment_converged && exit_status == 0 && interrupted == 0)
+      warnings.push_back("Campbell's protocol: none of the " + std::to_string(segment) + " segments of " +
+                         std::to_string(c.run.segment_collisions) +
+                         " collisions passed the section 2.5 check (the averages are the last segment's; raise run.max_segments)");
+  }
   const double first = first_profile_sample();
   report_steady_state(row_time, row_energy, std::isfinite(first) ? first : c.output.average_start, summary, warnings);
   for (auto& o : observers) o->finish(sink);
