@@ -62,7 +62,7 @@ TEST(CouetteServo, StartsFromTheCellsGeometry) {
 // +-sigma_target; both walls move at v' (apart when the cell is over-pressed), the walls keep
 // U_T / H = 1/24, the width grows at aspect x 2 v'. Then impulses count afresh. The shear rate is
 // kept by the top wall alone (the listing, "top") or by both symmetrically about their mean speed,
-// U_T / 2 = 0.5 here ("both", the default).
+// U_T / 2 = 0.5 here ("both"); "top" is the default.
 class CouetteServoWalls : public testing::TestWithParam<const char*> {};
 INSTANTIATE_TEST_SUITE_P(ShearRateWalls, CouetteServoWalls, testing::Values("both", "top"));
 

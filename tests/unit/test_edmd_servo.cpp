@@ -51,15 +51,15 @@ TEST(EdmdCouetteServo, WallStressSettlesOnTheTargetWithFixedAspectAndShearRate) 
   RecordProperty("mean_wall_stress_over_target", std::to_string(stress_sum / samples / kTarget));
 }
 
-// The cell is symmetric about its middle once the servo keeps the shear rate with both walls (the
-// default): the strips at the two walls have the same temperature. Four seeds, 12 strips
+// The cell is symmetric about its middle once the servo keeps the shear rate with both walls
+// (servo.shear_rate_walls = "both"): the strips at the two walls have the same temperature. Four seeds, 12 strips
 // following the walls, averaged over t = 8,000-40,000 R/U_T (the start-up transient, hotter at the
 // moving wall, has gone by then): each seed's top/bottom ratio scatters by about 0.1, so their
 // mean must lie within 3 standard errors of the seeds' spread (and 0.1) of 1.
 TEST(EdmdCouetteServo, SymmetricServoGivesEqualTemperaturesAtTheTwoWalls) {
   std::vector<double> ratios;
   for (const int seed : {1, 2, 3, 4}) {
-    const CaseConfig c = load_case_from_string(kCouette, "couette.toml", {"particles.seed=" + std::to_string(seed)});
+    const CaseConfig c = load_case_from_string(kCouette, "couette.toml", {"particles.seed=" + std::to_string(seed), "servo.shear_rate_walls=\"both\""});
     edmd::EdmdEngine<2> e(edmd::build_edmd_state(c));
     observe::StripProfile profile(2, 12);
     const auto& walls = e.state().walls;

@@ -2,8 +2,9 @@
 (section 4.1; the quantities of Figs. A4.5, A4.6, A4.11, A4.12 as they evolve in one run).
 
 timeseries.csv -> timeseries.png, one panel per group of columns present:
-    kinetic (and rotational) energy; granular temperature and the cell-average temperature
-    (`cell_temperature`); mass-centre height, floor position and bed height (`bed_height`), in
+    kinetic (and rotational) energy; granular temperature (Lan's cell average, `cell_temperature`:
+    the same for DEM runs) and the zones' temperature about their instantaneous means
+    (`zone_temperature`); mass-centre height, floor position and bed height (`bed_height`), in
     diameters when d is known; bulk solids fraction (`bulk_solids_fraction`); cumulative collisions
     (`collisions`) with the rate per particle; pressure (event-driven runs); maximum overlap / d with
     Lan's 1% limit. Only `time` is required, so event-driven runs plot too.
@@ -65,9 +66,9 @@ def energy(axes, series, info):
 def temperature(axes, series, info):
     time = series["time"]
     if "granular_temperature" in series:
-        axes.plot(time, series["granular_temperature"], color="C2", label="about the mass-centre velocity")
-    if "cell_temperature" in series:
-        axes.plot(time, series["cell_temperature"], color="C5", linewidth=0.9, label="cell average (Lan A4.11)")
+        axes.plot(time, series["granular_temperature"], color="C2", label="cell average, about the mass-centre velocity (Lan A4.11)")
+    if "zone_temperature" in series:
+        axes.plot(time, series["zone_temperature"], color="C5", linewidth=0.9, label="about each zone's mean (eq. 3-1-9)")
     axes.set_ylabel("granular temperature\n(m\u00b2/s\u00b2)")
     axes.legend(loc="upper right", fontsize=8)
 
@@ -125,7 +126,7 @@ def overlap(axes, series, info):
 # (columns any of which makes the panel, drawing function), top to bottom.
 PANELS = [
     (["kinetic_energy", "rotational_energy"], energy),
-    (["granular_temperature", "cell_temperature"], temperature),
+    (["granular_temperature", "zone_temperature"], temperature),
     (["mass_center_height", "bed_height", "floor_position"], heights),
     (["bulk_solids_fraction"], bulk_solids_fraction),
     (["collisions"], collisions),

@@ -96,9 +96,9 @@ struct ServoConfig {
   bool enabled = false;
   double normal_stress = 0.0;        // target, N/m in 2D (force per length), Pa in 3D
   bool keep_shear_rate = true;       // wall speeds follow the gap: U_T / H stays at its start value
-  // Which walls' speeds follow the gap: "both", symmetrically about the walls' mean velocity (each
-  // update's jump heats both sides alike), or "top", as listing COL002 (the jumps heat the top side).
-  std::string shear_rate_walls = "both";
+  // Which walls' speeds follow the gap: "top", as listing COL002 (the bottom wall stays at rest; the
+  // top wall's jumps heat its side a little), or "both", symmetrically about the walls' mean velocity.
+  std::string shear_rate_walls = "top";
   bool scale_width = true;           // periodic width follows the gap: the aspect ratio stays fixed
   long long every_collisions = 0;    // update after this many collisions; 0 = 3 N
   double gap_change = 0.0;           // m, or after this gap change; 0 = 0.1 R

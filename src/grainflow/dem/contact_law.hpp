@@ -10,6 +10,7 @@
 #include <ranges>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "grainflow/config/case_config.hpp"
@@ -66,6 +67,8 @@ concept ContactLaw = requires(const typename L::Params& params, typename L::Stat
   { L::describe(params, number) } -> std::same_as<std::vector<CheckLine>>;
   // The force on i (normal magnitude, tangential vector), advancing the pair's memory by dt.
   { L::force(params, state, kin, number) } -> std::same_as<ContactForce>;
+  // J, the energy the contact's springs hold at this overlap and memory (the energy budget).
+  { L::elastic_energy(params, std::as_const(state), number) } -> std::same_as<double>;
 };
 
 }  // namespace grainflow::dem

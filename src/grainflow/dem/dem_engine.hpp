@@ -23,6 +23,7 @@
 #include "grainflow/dem/neighbor_list.hpp"
 #include "grainflow/dem/portable_state.hpp"
 #include "grainflow/observe/coordination.hpp"
+#include "grainflow/observe/energy_budget.hpp"
 
 namespace grainflow::dem {
 
@@ -34,6 +35,18 @@ struct ContactStatistics {
   long rebuilds = 0;
   long collisions = 0;       // particle-particle contacts begun since the start (Lan's collision count)
   long wall_collisions = 0;  // particle-wall contacts begun since the start
+};
+
+// The running sums of the energy budget (observe/energy_budget.hpp), this rank's share. Powers are
+// those of the last force evaluation; works integrate them over the steps by the trapezoidal rule.
+struct EnergyTally {
+  double contact_work = 0.0;  // J, all contact forces' work on the free particles (walls' and bumps' included)
+  double wall_work = 0.0;     // J, moving walls' and bumps' work: their velocity times the force they exert
+  double growth_work = 0.0;   // J, the normal forces' work as radii grow (radius expansion pushes contacts apart)
+  double contact_power = 0.0, wall_power = 0.0, growth_power = 0.0;  // W
+  double start_energy = 0.0;            // J, kinetic + rotational + bounded potential + elastic at the start
+  double start_elastic = 0.0;           // J, the springs' part of it
+  double start_periodic_potential = 0.0;  // J
 };
 
 template <class Law>
@@ -70,7 +83,28 @@ class DemEngine {
     rebuild(true);
     // The initial evaluation must not advance contact histories (no time has passed): dt = 0.
     compute_forces(0.0);
+    energy_.contact_power = contact_power();
+    energy_.start_elastic = elastic_energy();
+    energy_.start_energy = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) + energy_.start_elastic;
+    energy_.start_periodic_potential = observe::periodic_potential(s_.particles, s_.box, s_.gravity);
   }
+
+  // This rank's share of the energy budget since the start (sum the ranks' shares). The dissipated
+  // energy is what the contact forces took from the particles' relative motion, plus what radius
+  // growth put in, less what the springs hold now. The residual is then the integrator's: velocity
+  // Verlet against the trapezoidal rule for the forces' work, O(dt^2) over a run.
+  observe::EnergyBudget energy_budget() const {
+    observe::EnergyBudget b;
+    const double elastic = elastic_energy();
+    b.gravity_work = energy_.start_periodic_potential - observe::periodic_potential(s_.particles, s_.box, s_.gravity);
+    b.wall_work = energy_.wall_work;
+    b.growth_work = energy_.growth_work;
+    b.change = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) + elastic - energy_.start_energy;
+    const double relative_work = energy_.contact_work - energy_.wall_work;  // on the contacts' relative motion
+    b.dissipated = energy_.growth_work - relative_work - (elastic - start_elastic());
+    return b;
+  }
+  const EnergyTally& energy_tally() const { return energy_; }
 
   DemState& state() { return s_; }
   const DemState& state() const { return s_; }
@@ -90,7 +124,7 @@ class DemEngine {
     ar(walls);
     if (walls != s_.walls.size()) throw RunError("checkpoint: the case has a different number of walls");
     for (auto& wall : s_.walls) ar(wall.position, wall.velocity);
-    ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_);
+    ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_, energy_);
     if (domain_) ar(*domain_);  // MPI: a restart runs on as many ranks (checked before)
   }
 
@@ -163,11 +197,15 @@ class DemEngine {
     s_.time = (s_.step + 1) * dt;  // no accumulated round-off in the clock
     ++s_.step;
     move_walls();
+    energy_.growth_work += dt * energy_.growth_power;  // this step's growth against the forces before it
     grow_radii();
     if (domain_) domain_->refresh(p);  // ghosts take their owners' new positions and velocities
     if (domain_ ? domain_->any(needs_rebuild()) : needs_rebuild()) rebuild(false);
+    const double contact_before = energy_.contact_power, wall_before = energy_.wall_power;
     compute_forces(dt);
-    half_kick();
+    energy_.contact_power = half_kick(true);
+    energy_.contact_work += 0.5 * dt * (contact_before + energy_.contact_power);
+    energy_.wall_work += 0.5 * dt * (wall_before + energy_.wall_power);
   }
 
   // Forces and torques at the current positions; `history_dt` advances the contact histories.
@@ -180,6 +218,7 @@ class DemEngine {
       p.force[i] = p.motion[i] == Motion::free ? p.mass[i] * s_.gravity : Vec3{};
       p.torque[i] = Vec3{};
     }
+    energy_.wall_power = energy_.growth_power = 0.0;
     pair_forces(history_dt);
     wall_forces(history_dt);
   }
@@ -204,17 +243,63 @@ class DemEngine {
   Vec3 unwrapped_position(std::size_t i) const { return s_.box.unwrapped(s_.particles.position[i], s_.particles.image[i]); }
 
  private:
-  void half_kick() {
+  // With `measure`, returns the contact forces' power on the kicked velocities (contact_power()).
+  double half_kick(bool measure = false) {
     ParticleStore& p = s_.particles;
     const double half = 0.5 * s_.time_step;
     const std::size_t n = p.size();
-#pragma omp parallel for num_threads(threads_) schedule(static)
+    double power = 0.0;
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : power)
     for (std::size_t i = 0; i < n; ++i) {
       if (p.motion[i] != Motion::free || p.ghost[i]) continue;
       p.velocity[i] += (half * p.inv_mass[i]) * p.force[i];
       p.angular_velocity[i] += (half * p.inv_inertia[i]) * p.torque[i];
+      if (measure) power += particle_contact_power(i);
     }
+    return power;
   }
+
+  // W: the contact forces' (all but gravity) power on free particle i, torques included.
+  double particle_contact_power(std::size_t i) const {
+    const ParticleStore& p = s_.particles;
+    return dot(p.force[i] - p.mass[i] * s_.gravity, p.velocity[i]) + dot(p.torque[i], p.angular_velocity[i]);
+  }
+  double contact_power() const {
+    double power = 0.0;
+    for (std::size_t i = 0; i < s_.particles.size(); ++i)
+      if (s_.particles.counted(i)) power += particle_contact_power(i);
+    return power;
+  }
+
+  // J, what the touching contacts' springs hold now (each pair once, on the rank owning its list's
+  // particle; wall contacts with their particle).
+  double elastic_energy() const {
+    const ParticleStore& p = s_.particles;
+    const auto shifts = s_.box.shift_table();
+    double e = 0.0;
+    for (std::size_t i = 0; i + 1 < pairs_.offsets.size(); ++i) {
+      if (p.ghost[i]) continue;
+      for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k) {
+        if (!contacts_.pair_touching[k]) continue;
+        const std::uint32_t j = pairs_.partner[k];
+        const double overlap = p.radius[i] + p.radius[j] - norm(p.position[i] - (p.position[j] + shifts[pairs_.shift[k]]));
+        const int bump_face = std::max(p.wall[i], p.wall[j]);
+        e += Law::elastic_energy(bump_face < 0 ? pair_params_ : bump_params_[bump_face], contacts_.pair_state[k],
+                                 std::max(0.0, overlap));
+      }
+    }
+    for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+      const FlatWall& wall = s_.walls[w];
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (!contacts_.wall_touching[w][i] || !p.counted(i)) continue;
+        const double overlap = p.radius[i] - wall.inward * (p.position[i][wall.axis] - wall.position);
+        e += Law::elastic_energy(wall_params_[w], contacts_.wall_state[w][i], std::max(0.0, overlap));
+      }
+    }
+    return e;
+  }
+  // The start's elastic energy is inside start_energy; kept apart for the dissipated energy.
+  double start_elastic() const { return energy_.start_elastic; }
 
   void move_walls() {
     for (auto& wall : s_.walls) wall.move_to(s_.time);
@@ -330,7 +415,9 @@ class DemEngine {
     }
     double max_ratio = stats_.max_overlap_ratio;
     long contacts = 0, begun = 0;
-#pragma omp parallel num_threads(threads) reduction(max : max_ratio) reduction(+ : contacts, begun)
+    double bump_power = 0.0, growth_power = 0.0;
+    const double growth_rate = s_.expansion_rate;
+#pragma omp parallel num_threads(threads) reduction(max : max_ratio) reduction(+ : contacts, begun, bump_power, growth_power)
     {
 #ifdef _OPENMP
       const int t = omp_get_thread_num();
@@ -391,6 +478,10 @@ class DemEngine {
           }
           max_ratio = std::max(max_ratio, c.overlap / (2.0 * std::min(ri, rj)));
           contacts += counted;
+          if (bump_face >= 0 && counted) [[unlikely]]  // a bump's work on its free partner, at the bump's velocity
+            bump_power += dot(p.wall[i] >= 0 ? -total : total, s_.bump_velocity[bump_face]);
+          if (growth_rate > 0.0 && counted) [[unlikely]]
+            growth_power += f.normal * growth_rate * ((ri < p.target_radius[i]) + (rj < p.target_radius[j]));
         }
       }
     }
@@ -408,6 +499,8 @@ class DemEngine {
     stats_.max_overlap_ratio = max_ratio;
     stats_.contacts = contacts;
     stats_.collisions += begun;
+    energy_.wall_power += bump_power;
+    energy_.growth_power += growth_power;
   }
 
   void wall_forces(double dt) {
@@ -415,6 +508,8 @@ class DemEngine {
     const std::size_t n = p.size();
     long wall_contacts = 0, begun = 0;
     double max_ratio = stats_.max_overlap_ratio;
+    double wall_power = 0.0, growth_power = 0.0;
+    const double growth_rate = s_.expansion_rate;
     for (std::size_t w = 0; w < s_.walls.size(); ++w) {
       const FlatWall& wall = s_.walls[w];
       const Params& params = wall_params_[w];
@@ -422,7 +517,8 @@ class DemEngine {
       auto& touching = contacts_.wall_touching[w];
       Vec3 normal;
       normal[wall.axis] = wall.inward;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : wall_contacts, begun) reduction(max : max_ratio)
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : wall_contacts, begun, wall_power, growth_power) \
+    reduction(max : max_ratio)
       for (std::size_t i = 0; i < n; ++i) {
         if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
         const double ri = p.radius[i];
@@ -444,8 +540,11 @@ class DemEngine {
         c.slip_velocity = relative - c.normal_velocity * normal - cross(ri * p.angular_velocity[i], normal);
         c.effective_mass = p.mass[i];
         const ContactForce f = Law::force(params, states[i], c, dt);
-        p.force[i] += f.normal * normal + f.tangential;
+        const Vec3 total = f.normal * normal + f.tangential;
+        p.force[i] += total;
         p.torque[i] -= ri * cross(normal, f.tangential);
+        wall_power += dot(total, wall.velocity);
+        if (growth_rate > 0.0 && ri < p.target_radius[i]) growth_power += f.normal * growth_rate;
         max_ratio = std::max(max_ratio, c.overlap / (2.0 * ri));
         ++wall_contacts;
       }
@@ -453,6 +552,8 @@ class DemEngine {
     stats_.wall_contacts = wall_contacts;
     stats_.wall_collisions += begun;
     stats_.max_overlap_ratio = max_ratio;
+    energy_.wall_power += wall_power;
+    energy_.growth_power += growth_power;
   }
 
   DemState s_;
@@ -473,6 +574,7 @@ class DemEngine {
   std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps
   std::unique_ptr<DomainExchange<State>> domain_;  // MPI ranks > 1 only
   ContactStatistics stats_;
+  EnergyTally energy_;
 };
 
 }  // namespace grainflow::dem

@@ -62,6 +62,11 @@ struct LinearDashpot {
     return out;
   }
 
+  // The normal spring's 1/2 kn overlap^2 and the tangential spring's 1/2 kt |shear|^2.
+  static double elastic_energy(const Params& p, const State& s, double overlap) {
+    return 0.5 * p.kn * overlap * overlap + 0.5 * p.kt * norm2(s.shear);
+  }
+
   // [contact]: kn (required), kt (default 2/7 kn), gamma_n (0), gamma_t (gamma_n / 2, LAMMPS).
   static void read(TomlReader& table, ContactParameters& out);
   // [walls.FACE]: gamma_n (default the particles').

@@ -66,6 +66,15 @@ struct WaltonBraun {
     return s.alpha_max * (1.0 - p.k1 / p.k2);
   }
 
+  // What the springs give back: unloading on K2 from here to alpha0, 1/2 K2 (alpha - alpha0)^2 (the
+  // rest of the loading work, 1 - e^2 of it, is lost), and the tangential force's F^2 / (2 K0), its
+  // release at the initial stiffness K0 (after a reversal the stiffness starts at K0).
+  static double elastic_energy(const Params& p, const State& s, double overlap) {
+    const double stretch = std::max(0.0, overlap - residual_overlap(p, s));
+    const double tangential = p.k0 > 0.0 ? 0.5 * norm2(s.tangential_force) / p.k0 : 0.0;
+    return 0.5 * p.k2 * stretch * stretch + tangential;
+  }
+
   static ContactForce force(const Params& p, State& s, const ContactKinematics& c, double dt) {
     ContactForce out;
     // Normal: F = min(K1 alpha, K2 (alpha - alpha0)) (eq. 2-4-1), never attractive.

@@ -91,8 +91,8 @@ class CouetteServo {
   }
 
   // U_T = shear rate x gap. Campbell's listing resets the top wall's speed alone; each reset is a
-  // jump in the top wall's speed that heats the top side only, so by default both walls' speeds
-  // change by half the jump, in opposite senses, and the walls' mean velocity stays.
+  // jump in the top wall's speed that heats the top side only. With "both" the walls' speeds change
+  // by half the jump each, in opposite senses, and the walls' mean velocity stays.
   void keep_shear_rate(EdmdState& s) const {
     double& bottom = s.walls[bottom_wall_].velocity.x;
     double& top = s.walls[top_wall_].velocity.x;

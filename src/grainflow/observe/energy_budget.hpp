@@ -1,5 +1,5 @@
 // A run's energy budget, the same for both engines: what went in (the work of gravity, of moving
-// and vibrating walls, the servo and Lees-Edwards boundaries), how the particles' energy changed,
+// and vibrating walls, the servo and Lees-Edwards boundaries, growing radii), how the particles' energy changed,
 // and what collisions and contacts dissipated. input = change + dissipated; the residual says how
 // well the bookkeeping closes (event-driven: to round-off; soft spheres: to the integrator's error).
 //
@@ -21,10 +21,11 @@ struct EnergyBudget {
   double gravity_work = 0.0;   // J, along the periodic axes
   double wall_work = 0.0;      // J, moving and vibrating walls (the servo's included)
   double boundary_work = 0.0;  // J, Lees-Edwards boundaries and periodic images moving with a Couette cell's width
+  double growth_work = 0.0;    // J, soft spheres: contacts pushed apart as radii grow (radius expansion)
   double change = 0.0;         // J, kinetic + rotational + potential (+ elastic, soft spheres) since the start
   double dissipated = 0.0;     // J, lost in collisions and contacts since the start
 
-  double input() const { return gravity_work + wall_work + boundary_work; }
+  double input() const { return gravity_work + wall_work + boundary_work + growth_work; }
   // (input - change - dissipated) / max(|input|, |dissipated|); `fallback_scale` (J) where both
   // are zero (an elastic gas in a box at rest).
   double residual(double fallback_scale) const {
@@ -48,11 +49,12 @@ inline double bounded_potential(const PeriodicBox& box, const Vec3& gravity, dou
   return u;
 }
 
-// Kinetic + rotational + the potential along the bounded axes, summed over the particles.
+// Kinetic + rotational + the potential along the bounded axes, summed over the free particles this
+// rank integrates (wall bumps move as told; MPI ghosts are another rank's).
 inline double mechanical_energy(const ParticleStore& p, const PeriodicBox& box, const Vec3& gravity) {
   double e = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i)
-    e += kinetic_energy(p, i) + bounded_potential(box, gravity, p.mass[i], p.position[i]);
+    if (p.counted(i)) e += kinetic_energy(p, i) + bounded_potential(box, gravity, p.mass[i], p.position[i]);
   return e;
 }
 
@@ -60,6 +62,7 @@ inline double mechanical_energy(const ParticleStore& p, const PeriodicBox& box, 
 inline double periodic_potential(const ParticleStore& p, const PeriodicBox& box, const Vec3& gravity) {
   double u = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.counted(i)) continue;
     const Vec3 x = box.unwrapped(p.position[i], p.image[i]);
     for (int a = 0; a < 3; ++a)
       if (box.periodic[a]) u -= p.mass[i] * gravity[a] * x[a];

@@ -41,25 +41,34 @@ struct TimeseriesRow {
   double floor_position, floor_velocity, max_overlap_ratio;
   long contacts, wall_contacts, rebuilds;
   observe::BedSurface bed;
-  double cell_temperature;         // Lan's: about each zone's instantaneous mean
+  double cell_temperature;         // Lan's computational-cell average: about the cell's mean velocity (eq. 3-1-2)
+  double zone_temperature;         // eq. (3-1-9)'s zone temperatures, about each zone's instantaneous mean, over the bed
   long collisions, wall_collisions;  // contacts begun since the start
+  observe::EnergyBudget budget;      // since the start, over all ranks
+  double budget_residual;
 };
 
 void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>& rows) {
   io::write_atomically(path, [&](std::ostream& out) {
     out << "# units: time s, kinetic_energy J, rotational_energy J, granular_temperature m^2/s^2 (about the whole bed's "
            "mean velocity), mass_center_height m, floor_position m, floor_velocity m/s, max_overlap_over_diameter 1, "
-           "bed_height m (above the floor), bulk_solids_fraction 1, cell_temperature m^2/s^2 (Lan: about each zone's "
-           "instantaneous mean), collisions and wall_collisions: contacts begun since the start\n";
+           "bed_height m (above the floor), bulk_solids_fraction 1, cell_temperature m^2/s^2 (Lan's cell average: about "
+           "the whole cell's mean velocity, eq. 3-1-2), zone_temperature m^2/s^2 (about each zone's instantaneous mean, "
+           "eq. 3-1-9, mass-weighted over the bed), collisions and wall_collisions: contacts begun since the start; energy budget since the "
+           "start: energy_input (gravity along periodic axes, walls, growth), energy_change (kinetic + rotational + "
+           "potential + elastic), energy_dissipated J, energy_budget_residual (input - change - dissipated) / "
+           "max(|input|, |dissipated|)\n";
     out << "time,kinetic_energy,rotational_energy,granular_temperature,mass_center_height,floor_position,"
            "floor_velocity,max_overlap_over_diameter,contacts,wall_contacts,neighbor_rebuilds,bed_height,"
-           "bulk_solids_fraction,ballistic_particles,cell_temperature,collisions,wall_collisions\n";
+           "bulk_solids_fraction,ballistic_particles,cell_temperature,zone_temperature,collisions,wall_collisions,energy_input,"
+           "energy_change,energy_dissipated,energy_budget_residual\n";
     for (const auto& r : rows)
       out << r.time << ',' << r.global.kinetic_energy << ',' << r.global.rotational_energy << ','
           << r.global.granular_temperature << ',' << r.global.mass_center_height << ',' << r.floor_position << ','
           << r.floor_velocity << ',' << r.max_overlap_ratio << ',' << r.contacts << ',' << r.wall_contacts << ','
           << r.rebuilds << ',' << r.bed.height << ',' << r.bed.bulk_solids_fraction << ',' << r.bed.ballistic << ','
-          << r.cell_temperature << ',' << r.collisions << ',' << r.wall_collisions << '\n';
+          << r.cell_temperature << ',' << r.zone_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.budget.input() << ','
+          << r.budget.change << ',' << r.budget.dissipated << ',' << r.budget_residual << '\n';
   });
 }
 
@@ -124,6 +133,7 @@ class DemRun {
   template <class E> void bind_frame(E& e);
   template <class E> const observe::Frame& frame_now(E& e);
   template <class E> void write_outputs(E& e);
+  template <class E> std::pair<observe::EnergyBudget, double> global_energy_budget(const E& e) const;
   template <class E> void write_summary(E& e, long long moving, const observe::GlobalSample& global,
                                         long long migrations, long long ghosts);
   void snapshot(const dem::DemState& st);
@@ -170,6 +180,8 @@ class DemRun {
   std::chrono::steady_clock::time_point wall_start, last_flush;
   double wall_seconds = 0.0;  // to the end of the loop, before the outputs are written
   double max_overlap_seen = 0.0;
+  observe::EnergyBudget final_budget;  // at the end, over all ranks
+  double final_budget_scale = 0.0;  // J, the starting energy (the residual's fallback scale)
   int exit_status = 0;
   long first_step = 0;  // steps before this process's (a restart's checkpoint)
   ParticleStore gathered;  // rank 0: all particles (final_state.csv, a checkpoint's datasets)
@@ -339,7 +351,11 @@ void DemRun::record(E& e) {
   if (floor_below)
     row.bed = observe::measure_bed_surface(st.particles, axis, observe::floor_position(frame.walls, c, axis), area,
                                            derived.reference_diameter, bed_thresholds, rank_reduce);
-  row.cell_temperature = zones_now->instantaneous_temperature(st.particles);
+  row.cell_temperature = row.global.granular_temperature;  // the free particles about their mean velocity
+  row.zone_temperature = zones_now->instantaneous_temperature(st.particles);
+  const auto [budget, start_energy] = global_energy_budget(e);
+  row.budget = budget;
+  row.budget_residual = budget.residual(start_energy);
   e.statistics().max_overlap_ratio = 0.0;
   rows.push_back(row);
   // Radius expansion (section 2.2) overlaps growing spheres on purpose: monitor only after it.
@@ -450,6 +466,16 @@ int DemRun::run() {
   return exit_status;
 }
 
+// The ranks' shares of the energy budget summed (collective), and the starting energy.
+template <class E>
+std::pair<observe::EnergyBudget, double> DemRun::global_energy_budget(const E& e) const {
+  observe::EnergyBudget b = e.energy_budget();
+  double sums[] = {b.gravity_work, b.wall_work, b.boundary_work, b.growth_work, b.change, b.dissipated,
+                   e.energy_tally().start_energy};
+  rank_reduce.sum(sums, std::size(sums));
+  return {{sums[0], sums[1], sums[2], sums[3], sums[4], sums[5]}, sums[6]};
+}
+
 template <class E>
 void DemRun::write_outputs(E& e) {
   const auto& st = e.state();
@@ -461,6 +487,9 @@ void DemRun::write_outputs(E& e) {
   const long long migrations = e.domain() ? comm.sum(e.domain()->migrated()) : 0;
   const long long ghosts = e.domain() ? comm.sum(e.domain()->ghosts()) : 0;
   const observe::Frame& last = frame_now(e);
+  const auto [budget, start_energy] = global_energy_budget(e);
+  final_budget = budget;
+  final_budget_scale = start_energy;
   for (auto& o : observers) o->write(last, sink);  // collective: rank 0 writes
   if (!writes) return;  // rank 0 writes the run's other files
   write_timeseries(dir + "/timeseries.csv", rows);
@@ -516,6 +545,7 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
   summary.number("max_overlap_over_diameter", max_overlap_seen);
   summary.number("kinetic_energy", global.kinetic_energy);
   summary.number("rotational_energy", global.rotational_energy);
+  write_energy_budget(final_budget, final_budget_scale, summary);
   summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
   // Lan's dimensionless groups (eqs. 4-1-2, 4-1-3) and Gamma, so sweeps can plot against them.
   summary.integer("gravity_axis", axis);
@@ -525,6 +555,7 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
   // Long-term means over the rows after output.average_start, with blocked standard errors.
   const double from = c.output.average_start;
   put(summary, "cell_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.cell_temperature; }));
+  put(summary, "zone_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.zone_temperature; }));
   if (floor_below) {
     put(summary, "bed_height", series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.height; }));
     put(summary, "bulk_solids_fraction",
