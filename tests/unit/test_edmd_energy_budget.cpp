@@ -9,7 +9,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
+
+#include <unistd.h>
 
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "grainflow/run/case_loader.hpp"
@@ -157,4 +161,57 @@ TEST(EdmdEnergyBudget, ClosesUnderLeesEdwardsShear) {
     EXPECT_GT(b.dissipated, 0.0);
     EXPECT_NEAR(b.input() - b.change - b.dissipated, 0.0, kRoundOff * b.input());
   }
+}
+
+// Campbell's scheme instead of the TC model: every collision inelastic and rough, each pair pushed
+// apart to 2.00001 R and each wall rebound to 1.00001 R. The shifts move particles against gravity;
+// their energy is the separation's input, and the budget still closes to round-off.
+TEST(EdmdEnergyBudget, ClosesWithCampbellsReseparation) {
+  const CaseConfig c = load_case_from_string(kChute, "chute.toml",
+                                             {"collision.contact_duration=0", "collision.separation_gap=1.0e-5"});
+  const auto b = run_budget<2>(c, 300.0);
+  EXPECT_NE(b.separation_work, 0.0);
+  EXPECT_NEAR(b.input() - b.change - b.dissipated, 0.0, kRoundOff * b.input());
+}
+
+// Two discs (R = 1) meet head on at relative speed 2 with e = 0.5: after the collision at t = 1
+// they are (1 + 1e-5) 2R apart, then separate at e x 2 = 1: at t = 2 their distance is 2.00002 + 1.
+TEST(EdmdReseparation, APairLeavesItsCollisionAtTheListingsDistance) {
+  const char* pair = R"(
+[engine]
+kind = "edmd"
+dimension = 2
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [40.0, 40.0, 1.0]
+boundary = { x = "periodic", y = "periodic", z = "periodic" }
+[gravity]
+vector = [0.0, 0.0, 0.0]
+[[species]]
+name = "disc"
+diameter = 2.0
+density = 0.3183098861837907
+[particles]
+init = "file"
+file = "PAIR"
+[collision]
+restitution = 0.5
+separation_gap = 1.0e-5
+[run]
+duration = 2.0
+)";
+  const std::string rows = "disc,10,20,0.5,1,0,0\ndisc,14,20,0.5,-1,0,0\n";
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / ("gf_pair_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "pair.csv").string();
+  std::ofstream(file) << "species,x,y,z,vx,vy,vz\n" << rows;
+  std::string text = pair;
+  text.replace(text.find("PAIR"), 4, file);
+  const CaseConfig c = load_case_from_string(text, "pair.toml");
+  std::filesystem::remove_all(dir);
+  edmd::EdmdEngine<2> e(edmd::build_edmd_state(c));
+  e.advance_to(2.0);
+  const auto& p = e.state().particles;
+  EXPECT_EQ(e.counters().collisions, 1);
+  EXPECT_NEAR(std::fabs(p.position[1].x - p.position[0].x), 2.0 * (1.0 + 1e-5) + 1.0, 1e-12);
 }

@@ -85,6 +85,9 @@ struct CollisionConfig {
   double contact_duration = 0.0;        // s, TC model: a collision within this time of a particle's last one is
                                         // elastic; default 1e-4 sqrt(R/g) under gravity, 0 without
   double tangential_restitution = -1.0; // -1 smooth, 0 Campbell's rough rule, +1 elastic rough
+  // Campbell's guard (listings COL001/COL002): after a collision the pair is pushed apart to
+  // (1 + gap) (R_i + R_j) and a particle to (1 + gap) R from a wall. 0: none (the TC model guards).
+  double separation_gap = 0.0;
   double wall_restitution = 1.0;        // default for walls
   double inertia_factor = 0.0;          // q = (k/R)^2; 0 = 0.5 (discs) in 2D, 0.4 (solid spheres) in 3D
 };

@@ -221,6 +221,11 @@ void read_collision(TomlReader& top, CaseConfig& c) {
     // one instant; the TC model (elastic within contact_duration) keeps them apart. 1e-4 sqrt(R/g).
     k.contact_duration = r.number("contact_duration", g > 0.0 ? 1e-4 * std::sqrt(0.5 * c.species.front().diameter / g) : 0.0);
     if (k.contact_duration < 0.0) r.fail("contact_duration", "must not be negative");
+    k.separation_gap = r.number("separation_gap", 0.0);
+    if (!(k.separation_gap >= 0.0 && k.separation_gap < 0.01))
+      r.fail("separation_gap", "must lie in [0, 0.01) (Campbell's listings: 1e-5, centres 2.00001 R apart)");
+    if (k.separation_gap > 0.0 && top.has("lees_edwards"))
+      r.fail("separation_gap", "is not available with Lees-Edwards boundaries (a shifted particle may cross the sliding seam)");
     k.elastic_speed = r.number("elastic_speed", 0.0);
     if (k.elastic_speed < 0.0) r.fail("elastic_speed", "must not be negative");
     if (r.has("roughness") && r.has("tangential_restitution"))

@@ -120,6 +120,7 @@ void write_collision(Out& o, const CollisionConfig& k) {
   o.key("elastic_speed", k.elastic_speed);
   o.key("rolling_speed", k.rolling_speed);
   o.key("contact_duration", k.contact_duration);
+  if (k.separation_gap > 0.0) o.key("separation_gap", k.separation_gap);
   o.key("tangential_restitution", k.tangential_restitution);  // stands for `roughness` too
   o.key("wall_restitution", k.wall_restitution);
   o.key("inertia_factor", k.inertia_factor);

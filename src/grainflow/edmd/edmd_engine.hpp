@@ -80,6 +80,7 @@ class EdmdEngine {
                      counters_.gravity_shift_work;
     b.wall_work = counters_.wall_work;
     b.boundary_work = counters_.boundary_work;
+    b.separation_work = counters_.separation_work;
     b.change = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) - counters_.start_energy;
     b.dissipated = counters_.dissipated;
     return b;
@@ -246,7 +247,8 @@ class EdmdEngine {
   // boundaries or servo-controlled width.
   bool lists_apply() {
     const std::size_t n = s_.particles.size();
-    if (n == 0 || s_.servo.enabled || images_.sliding() || s_.lees_edwards_rate != 0.0) return false;
+    if (n == 0 || s_.servo.enabled || images_.sliding() || s_.lees_edwards_rate != 0.0 || s_.separation_gap > 0.0)
+      return false;
     if (!(s_.gravity == Vec3{})) return false;
     return lists_.configure(s_.box, n, max_diameter_, uniform_radius_);
   }
@@ -515,6 +517,7 @@ class EdmdEngine {
                                       normal, recent ? tc_.elastic() : s_.restitution, recent ? -1.0 : s_.tangential_restitution);
     const double lost = before - kinetic_energy(i) - kinetic_energy(j);
     flight_[j].v -= frame;
+    if (s_.separation_gap > 0.0) [[unlikely]] separate(i, j, dr, normal);
     tc_.note_collision(i, s_.time);
     tc_.note_collision(j, s_.time);
     counters_.virial += dot(dr, impulse);
@@ -554,6 +557,11 @@ class EdmdEngine {
     const Vec3 impulse = collide_wall({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
                                       normal, wall.velocity, recent ? tc_.elastic() : wall.restitution, condition);
     servo_.add_normal_impulse(w, dot(impulse, normal));
+    if (s_.separation_gap > 0.0) [[unlikely]] {  // Campbell: 1.00001 R from the wall
+      const double gap = wall.inward * (flight_[i].x[wall.axis] - wall.at(s_.time));
+      const double target = (1.0 + s_.separation_gap) * p.radius[i];
+      if (gap < target) shift(i, normal * (target - gap));
+    }
     tc_.note_collision(i, s_.time);
     const double lost = before - kinetic_energy(i, wall.velocity);
     counters_.dissipated += lost;
@@ -624,6 +632,30 @@ class EdmdEngine {
   double kinetic_energy(std::uint32_t i, const Vec3& frame = {}) const {
     const ParticleStore& p = s_.particles;
     return 0.5 * p.mass[i] * norm2(flight_[i].v - frame) + 0.5 * norm2(p.angular_velocity[i]) / p.inv_inertia[i];
+  }
+
+  // Campbell's guard against pairs that would meet again at once (listings COL001/COL002): the pair
+  // is pushed apart along the normal to (1 + gap) times the contact distance, each by its partner's
+  // share of the mass (the centre of mass stays).
+  void separate(std::uint32_t i, std::uint32_t j, const Vec3& dr, const Vec3& normal) {
+    const ParticleStore& p = s_.particles;
+    const double deficit = (1.0 + s_.separation_gap) * (p.radius[i] + p.radius[j]) - norm(dr);
+    if (!(deficit > 0.0)) return;
+    const double share_i = p.inv_mass[i] / (p.inv_mass[i] + p.inv_mass[j]);
+    shift(i, normal * (deficit * share_i));
+    shift(j, normal * (-deficit * (1.0 - share_i)));
+  }
+  // Moves particle i by `by` now (it is current): into its cell, its course changed. The shift's
+  // gravitational energy -m g.by (along every axis: along a periodic one gravity's work is counted
+  // from the unwrapped displacement) is the separation's work in the energy budget.
+  void shift(std::uint32_t i, const Vec3& by) {
+    ParticleStore& p = s_.particles;
+    flight_[i].x += by;
+    s_.box.wrap(flight_[i].x, p.image[i]);
+    counters_.separation_work -= p.mass[i] * dot(s_.gravity, by);
+    ++flight_[i].count;
+    const int cell = grid_.cell_of(s_.box, flight_[i].x);
+    if (cell != grid_.cell(static_cast<int>(i))) grid_.move(flight_, static_cast<int>(i), cell);
   }
 
   // Its kinetic energy and potential along the bounded axes (observe/energy_budget.hpp).

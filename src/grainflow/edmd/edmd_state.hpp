@@ -32,6 +32,7 @@ struct EdmdState {
   double tangential_restitution = -1.0;
   double rolling_speed = 0.0;     // m/s, wall rebounds slower than this roll (Campbell section 2.14.2)
   double contact_duration = 0.0;  // s, TC model (Luding & McNamara): elastic within this time of a particle's last collision
+  double separation_gap = 0.0;    // Campbell's re-separation after each collision, relative to the contact distance
   std::vector<SpeciesConfig> species;
   ServoConfig servo;              // pressure-controlled Couette walls, when enabled
   double lees_edwards_rate = 0.0; // 1/s, shear rate of Lees–Edwards boundaries (flow x, gradient y)

@@ -20,6 +20,7 @@ struct EventCounters {
   double wall_work = 0.0;
   double boundary_work = 0.0;
   double gravity_shift_work = 0.0;
+  double separation_work = 0.0;          // J, potential energy the re-separation shifts gave
   double start_energy = 0.0;             // J, kinetic + rotational + bounded potential
   double start_periodic_potential = 0.0; // J
   long long servo_updates = 0;   // pressure-servo wall speed changes

@@ -196,6 +196,7 @@ EdmdState build_edmd_state(const CaseConfig& c) {
   s.restitution = law;
   s.tangential_restitution = c.collision.tangential_restitution;
   s.contact_duration = c.collision.contact_duration;
+  s.separation_gap = c.collision.separation_gap;
   s.rolling_speed = c.collision.rolling_speed;
   for (int f = 0; f < 6; ++f) {
     if (!holds_wall(c.domain.faces[f]) || face_axis(f) >= s.dimension) continue;

@@ -556,6 +556,9 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
   const double from = c.output.average_start;
   put(summary, "cell_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.cell_temperature; }));
   put(summary, "zone_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.zone_temperature; }));
+  for (int a = 0; a < 3; ++a)  // Lan's T_x, T_y, T_z of Table 4.6: each component's share, not a third of the sum
+    put(summary, std::string("cell_temperature_") + "xyz"[a],
+        series_mean(rows, from, [a](const TimeseriesRow& r) { return r.global.component_temperature[a]; }));
   if (floor_below) {
     put(summary, "bed_height", series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.height; }));
     put(summary, "bulk_solids_fraction",

@@ -88,6 +88,7 @@ void write_energy_budget(const observe::EnergyBudget& b, double fallback_scale, 
   summary.number("energy_input_walls", b.wall_work);
   summary.number("energy_input_boundaries", b.boundary_work);
   summary.number("energy_input_growth", b.growth_work);
+  summary.number("energy_input_separation", b.separation_work);
   summary.number("energy_change", b.change);
   summary.number("energy_dissipated", b.dissipated);
   summary.number("energy_budget_residual", b.residual(fallback_scale));
