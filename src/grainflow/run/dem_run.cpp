@@ -470,10 +470,14 @@ int DemRun::run() {
 template <class E>
 std::pair<observe::EnergyBudget, double> DemRun::global_energy_budget(const E& e) const {
   observe::EnergyBudget b = e.energy_budget();
-  double sums[] = {b.gravity_work, b.wall_work, b.boundary_work, b.growth_work, b.change, b.dissipated,
-                   e.energy_tally().start_energy};
+  double* parts[] = {&b.gravity_work, &b.wall_work, &b.boundary_work, &b.growth_work, &b.separation_work, &b.change,
+                     &b.dissipated};
+  double sums[std::size(parts) + 1];
+  for (std::size_t k = 0; k < std::size(parts); ++k) sums[k] = *parts[k];
+  sums[std::size(parts)] = e.energy_tally().start_energy;
   rank_reduce.sum(sums, std::size(sums));
-  return {{sums[0], sums[1], sums[2], sums[3], sums[4], sums[5]}, sums[6]};
+  for (std::size_t k = 0; k < std::size(parts); ++k) *parts[k] = sums[k];
+  return {b, sums[std::size(parts)]};
 }
 
 template <class E>
