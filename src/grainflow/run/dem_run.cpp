@@ -560,9 +560,11 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
   const double from = c.output.average_start;
   put(summary, "cell_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.cell_temperature; }));
   put(summary, "zone_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.zone_temperature; }));
-  for (int a = 0; a < 3; ++a)  // Lan's T_x, T_y, T_z of Table 4.6: each component's share, not a third of the sum
+  // Lan's T_x, T_y, T_z of Table 4.6: each component's share of the cell-average temperature,
+  // <C_a^2> / 3, so that they add up to it (his T_x = T_z at Gamma = 5 and 20 are a third of <C_x^2>).
+  for (int a = 0; a < 3; ++a)
     put(summary, std::string("cell_temperature_") + "xyz"[a],
-        series_mean(rows, from, [a](const TimeseriesRow& r) { return r.global.component_temperature[a]; }));
+        series_mean(rows, from, [a](const TimeseriesRow& r) { return r.global.component_temperature[a] / 3.0; }));
   if (floor_below) {
     put(summary, "bed_height", series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.height; }));
     put(summary, "bulk_solids_fraction",
