@@ -27,6 +27,7 @@ using namespace grainflow::dem;
 namespace {
 
 using PairKey = std::tuple<std::uint32_t, std::uint32_t, int>;  // (smaller id, larger id, shift code of the larger)
+// A particle and its own image form a pair (id, id, code) with code above PeriodicBox::kNoShift.
 
 std::set<PairKey> pair_set(const ParticleStore& p, const NeighborPairs& list) {
   std::set<PairKey> out;
@@ -37,7 +38,10 @@ std::set<PairKey> pair_set(const ParticleStore& p, const NeighborPairs& list) {
     EXPECT_LE(list.offsets[i], list.offsets[i + 1]);
     for (std::uint32_t k = list.offsets[i]; k < list.offsets[i + 1]; ++k) {
       const std::uint32_t j = list.partner[k];
-      EXPECT_LT(p.id[i], p.id[j]) << "a pair must be listed under the smaller id";
+      if (i == j)
+        EXPECT_GT(list.shift[k], PeriodicBox::kNoShift) << "a particle's own image must be listed in the positive direction";
+      else
+        EXPECT_LT(p.id[i], p.id[j]) << "a pair must be listed under the smaller id";
       const bool inserted = out.emplace(p.id[i], p.id[j], list.shift[k]).second;
       EXPECT_TRUE(inserted) << "pair " << p.id[i] << "-" << p.id[j] << " listed twice";
     }
@@ -50,11 +54,12 @@ std::set<PairKey> brute_force(const ParticleStore& p, const PeriodicBox& box, do
   std::set<PairKey> out;
   for (std::size_t a = 0; a < p.size(); ++a)
     for (std::size_t b = 0; b < p.size(); ++b) {
-      if (p.id[a] >= p.id[b]) continue;
+      if (p.id[a] > p.id[b]) continue;
       if (p.motion[a] != Motion::free && p.motion[b] != Motion::free) continue;  // two fixed: never computed
       const double cutoff = p.target_radius[a] + p.target_radius[b] + skin;
-      for (int code = 0; code < 27; ++code) {
-        const int s[3] = {code % 3 - 1, (code / 3) % 3 - 1, code / 9 - 1};
+      for (int code = 0; code < PeriodicBox::kShiftCodes; ++code) {
+        if (a == b && code <= PeriodicBox::kNoShift) continue;  // one's own image: once, positive direction
+        const auto s = PeriodicBox::shift_of(static_cast<std::uint8_t>(code));
         bool allowed = true;
         Vec3 shifted = p.position[b];
         for (int axis = 0; axis < 3; ++axis) {
@@ -238,6 +243,10 @@ TEST(NeighborList, CellGridFindsExactlyTheAllPairsSet) {
       {"open y, outside", {0.0, 0.0, 0.0}, {0.015, 0.02, 0.015}, {true, false, true}, 500, 0.0015, 0.00045, 0.01},
       {"all open, outside", {0.0, 0.0, 0.0}, {0.02, 0.02, 0.02}, {false, false, false}, 400, 0.0015, 0.0003, 0.006},
       {"mixed, 2 cells on x", {0.0, 0.0, 0.0}, {0.0070, 0.03, 0.02}, {true, false, false}, 200, 0.0015, 0.0004, 0.002},
+      // Narrow periodic widths, one cell across: x 0.0025 m against a cutoff of 0.00345 m holds
+      // images two box lengths away; z 0.0050 m one; particles meet their own images.
+      {"narrow x and z", {0.0, 0.0, 0.0}, {0.0025, 0.02, 0.0050}, {true, false, true}, 40, 0.0015, 0.00045, 0.0},
+      {"narrow x, periodic y", {0.0, 0.0, 0.0}, {0.0018, 0.015, 0.02}, {true, true, false}, 60, 0.0015, 0.00045, 0.0},
   };
   for (const auto& config : configs) {
     PeriodicBox box;

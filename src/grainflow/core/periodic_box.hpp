@@ -1,5 +1,6 @@
 // The simulation box: its extent, which axes are periodic, minimum-image displacements and the
-// 27 image shifts a neighbor list refers to by a one-byte code.
+// image shifts a neighbor list refers to by a one-byte code: up to kMaxImage box lengths along each
+// axis, so that a periodic width down to half a contact cutoff finds every image within reach.
 #pragma once
 
 #include <array>
@@ -16,15 +17,23 @@ struct PeriodicBox {
 
   double length(int axis) const { return hi[axis] - lo[axis]; }
 
-  // Shift code: (sx+1) + 3 (sy+1) + 9 (sz+1) with s in {-1, 0, 1} box lengths; 13 is no shift.
-  static constexpr std::uint8_t kNoShift = 13;
+  // Shift code: (sx+2) + 5 (sy+2) + 25 (sz+2) with s in {-2, ..., 2} box lengths; 62 is no shift,
+  // and a code above it is a shift whose last nonzero component (z, then y, then x) is positive.
+  static constexpr int kMaxImage = 2;
+  static constexpr int kShiftBase = 2 * kMaxImage + 1;
+  static constexpr int kShiftCodes = kShiftBase * kShiftBase * kShiftBase;
+  static constexpr std::uint8_t kNoShift = kMaxImage * (1 + kShiftBase + kShiftBase * kShiftBase);
   static std::uint8_t shift_code(int sx, int sy, int sz) {
-    return static_cast<std::uint8_t>((sx + 1) + 3 * (sy + 1) + 9 * (sz + 1));
+    return static_cast<std::uint8_t>((sx + kMaxImage) + kShiftBase * ((sy + kMaxImage) + kShiftBase * (sz + kMaxImage)));
   }
-  std::array<Vec3, 27> shift_table() const {
-    std::array<Vec3, 27> table{};
-    for (int code = 0; code < 27; ++code) {
-      const int s[3] = {code % 3 - 1, (code / 3) % 3 - 1, code / 9 - 1};
+  static std::array<int, 3> shift_of(std::uint8_t code) {
+    return {code % kShiftBase - kMaxImage, (code / kShiftBase) % kShiftBase - kMaxImage,
+            code / (kShiftBase * kShiftBase) - kMaxImage};
+  }
+  std::array<Vec3, kShiftCodes> shift_table() const {
+    std::array<Vec3, kShiftCodes> table{};
+    for (int code = 0; code < kShiftCodes; ++code) {
+      const auto s = shift_of(static_cast<std::uint8_t>(code));
       for (int axis = 0; axis < 3; ++axis) table[code][axis] = s[axis] * length(axis);
     }
     return table;

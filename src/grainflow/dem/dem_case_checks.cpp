@@ -40,13 +40,15 @@ void validate_dem_case(const CaseConfig& c) {
              std::to_string(d.contact_duration) + " s in only " + std::to_string(d.steps_per_contact) +
              " steps; use a time step <= " + std::to_string(suggested) + " s (at least 5 steps per contact)");
   }
-  // The cell grid needs two cells across every periodic axis.
+  // A periodic width shorter than two cutoffs is searched for every image within reach, up to
+  // kMaxImage box lengths: so at least half a cutoff.
   for (int axis = 0; axis < 3; ++axis) {
     if (!c.domain.periodic(axis)) continue;
-    const double needed = 2.0 * (d.max_diameter + d.skin);
+    const double needed = (d.max_diameter + d.skin) / PeriodicBox::kMaxImage;
     if (c.domain.length(axis) < needed)
       fail(c, "domain.hi", std::string("periodic axis ") + "xyz"[axis] + " is " + std::to_string(c.domain.length(axis)) +
-                               " m long; it must be at least 2 (largest diameter + skin) = " + std::to_string(needed) + " m");
+                               " m long; it must be at least (largest diameter + skin) / 2 = " + std::to_string(needed) +
+                               " m (images are searched up to two box lengths away)");
   }
   for (int f = 0; f < 6; ++f) {
     if (c.domain.faces[f] != FaceKind::bumpy) continue;

@@ -143,7 +143,11 @@ class DemEngine {
       if (p.ghost[i]) continue;
       particles.particles.push_back(p.record(i));
       for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
-        if (contacts_.pair_touching[k]) contacts.pairs.push_back({p.id[i], p.id[pairs_.partner[k]], contacts_.pair_state[k]});
+        if (contacts_.pair_touching[k]) {
+          const std::uint32_t j = pairs_.partner[k];
+          contacts.pairs.push_back({p.id[i], p.id[j], ContactStore<State>::image_key(pairs_.shift[k], p.image[i], p.image[j]),
+                                    contacts_.pair_state[k]});
+        }
       for (std::size_t w = 0; w < contacts_.wall_state.size(); ++w)
         if (contacts_.wall_touching[w][i])
           contacts.walls.push_back({p.id[i], static_cast<std::uint32_t>(w), contacts_.wall_state[w][i]});
@@ -157,7 +161,7 @@ class DemEngine {
   // keeps the counts of contacts begun (one rank does), so that the ranks' sum stays the run's.
   void restore_portable(const PortableParticles& particles, const Portable& contacts, bool totals_here) {
     ParticleStore& p = s_.particles;
-    contacts_.restore(contacts.pairs, pairs_, p.id);
+    contacts_.restore(contacts.pairs, pairs_, p.id, p.image);
     std::vector<std::int64_t> index(particles.particles.size(), -1);
     for (std::size_t i = 0; i < p.size(); ++i)
       if (p.id[i] < index.size()) index[p.id[i]] = static_cast<std::int64_t>(i);
@@ -358,12 +362,12 @@ class DemEngine {
     // stop at this step together (and write their outputs) instead of waiting on the faulty one.
     if (domain_ ? domain_->any(broken.has_value()) : broken.has_value())
       throw broken ? non_finite_state(s_, *broken) : NonFiniteState(kFaultOnAnotherRank);  // the run adds the cause
-    for (std::size_t i = 0; i < p.size(); ++i) s_.box.wrap(p.position[i], p.image[i]);
-    // The touching pairs' states, by particle id, are set aside and the old list freed before the new
-    // one is built, so that the peak memory holds one list, not two. Until here the particles are
-    // in the old list's order.
+    // The touching pairs' states, by particle id and image, are set aside and the old list freed
+    // before the new one is built, so that the peak memory holds one list, not two. Until here the
+    // particles are in the old list's order and unwrapped as when it was built.
     std::vector<typename ContactStore<State>::KeptPair> kept;
-    if (!first) kept = contacts_.take_touching(pairs_, p.id);
+    if (!first) kept = contacts_.take_touching(pairs_, p.id, p.image);
+    for (std::size_t i = 0; i < p.size(); ++i) s_.box.wrap(p.position[i], p.image[i]);
     const std::size_t expected_pairs = pairs_.pair_count();
     pairs_ = NeighborPairs{};
     if (domain_) {
@@ -381,7 +385,7 @@ class DemEngine {
     }
     if (domain_) domain_->index(p);
     grid_.build_pairs(p, s_.box, s_.skin, threads_, pairs_, expected_pairs);
-    contacts_.restore(kept, pairs_, p.id);
+    contacts_.restore(kept, pairs_, p.id, p.image);
     position_at_build_ = p.position;
     ++stats_.rebuilds;
   }

@@ -26,7 +26,14 @@ void CellGrid::setup_region(const PeriodicBox& box, const Vec3& lo, const Vec3& 
     framed_[axis] = box.periodic[axis] && cut[axis];
   }
   cells_ = cell_counts(lengths, 3, cell_size, 1 << 12, std::max(32768.0, 4.0 * static_cast<double>(particles)));
-  for (int axis = 0; axis < 3; ++axis) inv_size_[axis] = cells_[axis] / lengths[axis];
+  for (int axis = 0; axis < 3; ++axis) {
+    inv_size_[axis] = cells_[axis] / lengths[axis];
+    // One cell across a wrapping axis: the partner's images up to a cutoff away, one box length
+    // per step (the case checks keep a width of at least half a cutoff: kMaxImage steps).
+    reach_[axis] = 1;
+    if (wraps_[axis] && cells_[axis] == 1)
+      reach_[axis] = std::clamp(static_cast<int>(std::ceil(cell_size / lengths[axis] - 1e-12)), 1, PeriodicBox::kMaxImage);
+  }
 }
 
 int CellGrid::cell_of(const Vec3& x) const {
@@ -66,9 +73,10 @@ void CellGrid::bin(const std::vector<Vec3>& position) {
   for (std::size_t i = 0; i < n; ++i) order_[fill[cell_index_[i]]++] = static_cast<std::uint32_t>(i);
 }
 
-// Pairs of particles [begin, end) with partners of a higher id in the 27 cells around each. Framed:
-// along cut periodic axes the particles sit at their images frame_[i] inside the region, and a
-// pair's shift code adds the difference of the two images.
+// Pairs of particles [begin, end) with partners of a higher id in the 27 cells around each (more
+// images along a narrow periodic axis, and the particle's own images). Framed: along cut periodic
+// axes the particles sit at their images frame_[i] inside the region, and a pair's shift code adds
+// the difference of the two images.
 template <bool Framed>
 void CellGrid::search(const ParticleStore& p, const PeriodicBox& box, double skin, std::size_t begin, std::size_t end,
                       std::vector<std::uint32_t>& my_partners, std::vector<std::uint8_t>& my_codes,
@@ -83,33 +91,33 @@ void CellGrid::search(const ParticleStore& p, const PeriodicBox& box, double ski
     const double ri = p.target_radius[i] + skin;
     const std::uint32_t idi = p.id[i];
     const std::size_t before = my_partners.size();
-    for (int dz = -1; dz <= 1; ++dz) {
-      int cz = ci[2] + dz, sz = 0;
-      if (cz < 0 || cz >= cells_[2]) {
-        if (!wraps_[2]) continue;
-        sz = cz < 0 ? -1 : 1;
-        cz -= sz * cells_[2];
-      }
-      for (int dy = -1; dy <= 1; ++dy) {
-        int cy = ci[1] + dy, sy = 0;
-        if (cy < 0 || cy >= cells_[1]) {
-          if (!wraps_[1]) continue;
-          sy = cy < 0 ? -1 : 1;
-          cy -= sy * cells_[1];
-        }
-        for (int dx = -1; dx <= 1; ++dx) {
-          int cx = ci[0] + dx, sx = 0;
-          if (cx < 0 || cx >= cells_[0]) {
-            if (!wraps_[0]) continue;
-            sx = cx < 0 ? -1 : 1;
-            cx -= sx * cells_[0];
-          }
+    // Neighbour cell c + d along an axis: inside, or wrapped to an image s box lengths away.
+    auto wrap = [&](int axis, int c, int& s) {
+      s = 0;
+      if (c >= 0 && c < cells_[axis]) return c;
+      if (!wraps_[axis]) return -1;
+      s = static_cast<int>(std::floor(static_cast<double>(c) / cells_[axis]));
+      return c - s * cells_[axis];
+    };
+    for (int dz = -reach_[2]; dz <= reach_[2]; ++dz) {
+      int sz = 0;
+      const int cz = wrap(2, ci[2] + dz, sz);
+      if (cz < 0) continue;
+      for (int dy = -reach_[1]; dy <= reach_[1]; ++dy) {
+        int sy = 0;
+        const int cy = wrap(1, ci[1] + dy, sy);
+        if (cy < 0) continue;
+        for (int dx = -reach_[0]; dx <= reach_[0]; ++dx) {
+          int sx = 0;
+          const int cx = wrap(0, ci[0] + dx, sx);
+          if (cx < 0) continue;
           const Vec3 shift{sx * length[0], sy * length[1], sz * length[2]};
           const std::uint8_t code = PeriodicBox::shift_code(sx, sy, sz);
           const int neighbor = cx + cells_[0] * (cy + cells_[1] * cz);
           for (std::uint32_t k = start_[neighbor]; k < start_[neighbor + 1]; ++k) {
             const std::uint32_t j = order_[k];
-            if (p.id[j] <= idi || !pair_interacts(p, i, j)) continue;
+            // Each pair once: a partner of higher id, or one's own image in the positive direction.
+            if ((j == i ? code <= PeriodicBox::kNoShift : p.id[j] <= idi) || !pair_interacts(p, i, j)) continue;
             Vec3 xj = p.position[j] + shift;
             if constexpr (Framed)
               for (int a = 0; a < 3; ++a) xj[a] += frame_[j][a] * length[a];
@@ -180,24 +188,25 @@ void build_pairs_all(const ParticleStore& p, const PeriodicBox& box, double skin
   out.offsets.assign(n + 1, 0);
   out.partner.clear();
   out.shift.clear();
+  // Every image up to kMaxImage box lengths away along the periodic axes (positions lie in the box).
+  int reach[3];
+  for (int axis = 0; axis < 3; ++axis) reach[axis] = box.periodic[axis] ? PeriodicBox::kMaxImage : 0;
+  const auto shifts = box.shift_table();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
-      if (i == j || p.id[j] <= p.id[i] || !pair_interacts(p, i, j)) continue;
-      // Nearest image, and its shift code.
-      Vec3 d = p.position[i] - p.position[j];
-      int s[3] = {0, 0, 0};
-      for (int axis = 0; axis < 3; ++axis) {
-        if (!box.periodic[axis]) continue;
-        const double L = box.length(axis);
-        const int k = static_cast<int>(std::nearbyint(d[axis] / L));
-        d[axis] -= k * L;
-        s[axis] = k;
-      }
-      const double cutoff = p.target_radius[i] + p.target_radius[j] + skin;
-      if (norm2(d) < cutoff * cutoff) {
-        out.partner.push_back(static_cast<std::uint32_t>(j));
-        out.shift.push_back(PeriodicBox::shift_code(s[0], s[1], s[2]));
-      }
+      if (!pair_interacts(p, i, j)) continue;
+      for (int sz = -reach[2]; sz <= reach[2]; ++sz)
+        for (int sy = -reach[1]; sy <= reach[1]; ++sy)
+          for (int sx = -reach[0]; sx <= reach[0]; ++sx) {
+            const std::uint8_t code = PeriodicBox::shift_code(sx, sy, sz);
+            if (i == j ? code <= PeriodicBox::kNoShift : p.id[j] <= p.id[i]) continue;
+            const Vec3 d = p.position[i] - (p.position[j] + shifts[code]);
+            const double cutoff = p.target_radius[i] + p.target_radius[j] + skin;
+            if (norm2(d) < cutoff * cutoff) {
+              out.partner.push_back(static_cast<std::uint32_t>(j));
+              out.shift.push_back(code);
+            }
+          }
     }
     out.offsets[i + 1] = static_cast<std::uint32_t>(out.partner.size());
   }

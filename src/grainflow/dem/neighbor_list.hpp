@@ -1,6 +1,10 @@
 // Half neighbor lists in CSR form (offsets + partners + image shift codes): each pair closer than
 // r_i + r_j + skin appears once, under the partner with the smaller id. Built from a cell grid, or
 // by the all-pairs reference search used in tests. Pairs of two non-moving particles are skipped.
+// A periodic width shorter than two cutoffs holds one cell: then every image of a partner within
+// the cutoff is listed, each once (the same pair may appear with several shift codes), and so is a
+// particle's own image (under a shift code above PeriodicBox::kNoShift, the other direction being
+// the same contact).
 #pragma once
 
 #include <array>
@@ -57,6 +61,7 @@ class CellGrid {
   std::array<bool, 3> framed_{};          // periodic and cut: particles binned at an image
   std::vector<std::array<std::int8_t, 3>> frame_;  // each particle's image along the framed axes
   std::array<int, 3> cells_{1, 1, 1};
+  std::array<int, 3> reach_{1, 1, 1};     // neighbour cells searched each way: images along a one-cell axis
   Vec3 inv_size_;
   std::vector<std::uint32_t> start_;  // CSR over cells
   std::vector<std::uint32_t> order_;  // particle indices sorted by cell
