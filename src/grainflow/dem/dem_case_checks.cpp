@@ -71,11 +71,17 @@ void validate_dem_case(const CaseConfig& c) {
   if (c.particles.init != "file") {
     Vec3 lo = c.particles.region_lo.value_or(c.domain.lo);
     Vec3 hi = c.particles.region_hi.value_or(c.domain.hi);
+    // The species placed at random must fit across the region (one placed at its own `position`,
+    // Lan's large sphere, need not).
+    double placed_diameter = 0.0;
+    for (const auto& species : c.species)
+      if (!species.position && species.count > 0) placed_diameter = std::max(placed_diameter, species.diameter);
     for (int axis = 0; axis < 3; ++axis) {
       if (lo[axis] < c.domain.lo[axis] || hi[axis] > c.domain.hi[axis])
         fail(c, "particles.region_lo", "the placement region must lie inside the domain");
-      if (!(hi[axis] - lo[axis] > d.max_diameter))
-        fail(c, "particles.region_hi", "the placement region must be wider than the largest diameter on every axis");
+      if (!(hi[axis] - lo[axis] > placed_diameter))
+        fail(c, "particles.region_hi",
+             "the placement region must be wider than the largest diameter placed at random on every axis");
     }
     double volume = 1.0;
     for (int axis = 0; axis < 3; ++axis) volume *= hi[axis] - lo[axis];

@@ -42,7 +42,8 @@ void validate_hard_particles_apart(const CaseConfig& c) {
     // Explicit particles must not overlap: hard particles cannot start interpenetrating.
     ParticleStore p;
     p.resize(c.initial_particles.size());
-    PeriodicBox box{c.domain.lo, c.domain.hi, {c.domain.periodic(0), c.domain.periodic(1), c.domain.periodic(2)}};
+    // Discs (2D) all lie in one plane: z is no axis to find images along.
+    PeriodicBox box{c.domain.lo, c.domain.hi, {c.domain.periodic(0), c.domain.periodic(1), dim == 3 && c.domain.periodic(2)}};
     for (std::size_t i = 0; i < c.initial_particles.size(); ++i) {
       const auto& record = c.initial_particles[i];
       double d = record.diameter;
