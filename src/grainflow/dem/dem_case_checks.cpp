@@ -79,9 +79,11 @@ void validate_dem_case(const CaseConfig& c) {
     for (int axis = 0; axis < 3; ++axis) {
       if (lo[axis] < c.domain.lo[axis] || hi[axis] > c.domain.hi[axis])
         fail(c, "particles.region_lo", "the placement region must lie inside the domain");
-      if (!(hi[axis] - lo[axis] > placed_diameter))
+      // Along a periodic axis centres go anywhere (no face to keep clear of).
+      if (!c.domain.periodic(axis) && !(hi[axis] - lo[axis] > placed_diameter))
         fail(c, "particles.region_hi",
-             "the placement region must be wider than the largest diameter placed at random on every axis");
+             "the placement region must be wider than the largest diameter placed at random on every bounded axis");
+      if (!(hi[axis] > lo[axis])) fail(c, "particles.region_hi", "the placement region must have a positive extent");
     }
     double volume = 1.0;
     for (int axis = 0; axis < 3; ++axis) volume *= hi[axis] - lo[axis];
