@@ -92,7 +92,7 @@ class DemEngine {
   // This rank's share of the energy budget since the start (sum the ranks' shares). The dissipated
   // energy is what the contact forces took from the particles' relative motion, plus what radius
   // growth put in, less what the springs hold now. The residual is then the integrator's: velocity
-  // Verlet against the trapezoidal rule for the forces' work, O(dt^2) over a run.
+  // Verlet against the trapezoidal rule for the forces' work, -dt/4 (v1 - v0).(F1 - F0) a step.
   observe::EnergyBudget energy_budget() const {
     observe::EnergyBudget b;
     const double elastic = elastic_energy();
