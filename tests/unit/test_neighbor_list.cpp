@@ -49,25 +49,32 @@ std::set<PairKey> pair_set(const ParticleStore& p, const NeighborPairs& list) {
   return out;
 }
 
-// Independent reference: every pair, every one of the 27 periodic images, no minimum-image rounding.
+// Independent reference: every pair, every periodic image up to two box lengths away that can lie
+// within the cutoff (positions lie in the box, so an image |s| lengths away is at least (|s| - 1) L
+// away), no minimum-image rounding.
 std::set<PairKey> brute_force(const ParticleStore& p, const PeriodicBox& box, double skin) {
   std::set<PairKey> out;
+  double largest = 0.0;
+  for (std::size_t a = 0; a < p.size(); ++a) largest = std::max(largest, p.target_radius[a]);
+  int reach[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    reach[axis] = 0;
+    if (box.periodic[axis])
+      while (reach[axis] < PeriodicBox::kMaxImage && reach[axis] * box.length(axis) < 2.0 * largest + skin) ++reach[axis];
+  }
   for (std::size_t a = 0; a < p.size(); ++a)
     for (std::size_t b = 0; b < p.size(); ++b) {
       if (p.id[a] > p.id[b]) continue;
       if (p.motion[a] != Motion::free && p.motion[b] != Motion::free) continue;  // two fixed: never computed
       const double cutoff = p.target_radius[a] + p.target_radius[b] + skin;
-      for (int code = 0; code < PeriodicBox::kShiftCodes; ++code) {
-        if (a == b && code <= PeriodicBox::kNoShift) continue;  // one's own image: once, positive direction
-        const auto s = PeriodicBox::shift_of(static_cast<std::uint8_t>(code));
-        bool allowed = true;
-        Vec3 shifted = p.position[b];
-        for (int axis = 0; axis < 3; ++axis) {
-          if (s[axis] != 0 && !box.periodic[axis]) allowed = false;
-          shifted[axis] += s[axis] * box.length(axis);
-        }
-        if (allowed && norm2(p.position[a] - shifted) < cutoff * cutoff) out.emplace(p.id[a], p.id[b], code);
-      }
+      for (int sz = -reach[2]; sz <= reach[2]; ++sz)
+        for (int sy = -reach[1]; sy <= reach[1]; ++sy)
+          for (int sx = -reach[0]; sx <= reach[0]; ++sx) {
+            const std::uint8_t code = PeriodicBox::shift_code(sx, sy, sz);
+            if (a == b && code <= PeriodicBox::kNoShift) continue;  // one's own image: once, positive direction
+            const Vec3 shifted = p.position[b] + Vec3{sx * box.length(0), sy * box.length(1), sz * box.length(2)};
+            if (norm2(p.position[a] - shifted) < cutoff * cutoff) out.emplace(p.id[a], p.id[b], code);
+          }
     }
   return out;
 }

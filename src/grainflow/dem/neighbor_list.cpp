@@ -188,9 +188,15 @@ void build_pairs_all(const ParticleStore& p, const PeriodicBox& box, double skin
   out.offsets.assign(n + 1, 0);
   out.partner.clear();
   out.shift.clear();
-  // Every image up to kMaxImage box lengths away along the periodic axes (positions lie in the box).
+  // Every image within reach along the periodic axes: positions lie in the box, so an image s box
+  // lengths away is at least (|s| - 1) L away, and ceil(cutoff / L) lengths cover the cutoff.
+  double cutoff_max = skin;
+  for (std::size_t i = 0; i < n; ++i) cutoff_max = std::max(cutoff_max, 2.0 * p.target_radius[i] + skin);
   int reach[3];
-  for (int axis = 0; axis < 3; ++axis) reach[axis] = box.periodic[axis] ? PeriodicBox::kMaxImage : 0;
+  for (int axis = 0; axis < 3; ++axis)
+    reach[axis] = box.periodic[axis] ? std::clamp(static_cast<int>(std::ceil(cutoff_max / box.length(axis))), 1,
+                                                  PeriodicBox::kMaxImage)
+                                     : 0;
   const auto shifts = box.shift_table();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
