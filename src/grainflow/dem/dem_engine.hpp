@@ -101,7 +101,7 @@ class DemEngine {
     b.growth_work = energy_.growth_work;
     b.change = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) + elastic - energy_.start_energy;
     const double relative_work = energy_.contact_work - energy_.wall_work;  // on the contacts' relative motion
-    b.dissipated = energy_.growth_work - relative_work - (elastic - start_elastic());
+    b.dissipated = energy_.growth_work - relative_work - (elastic - energy_.start_elastic);
     return b;
   }
   const EnergyTally& energy_tally() const { return energy_; }
@@ -302,8 +302,6 @@ class DemEngine {
     }
     return e;
   }
-  // The start's elastic energy is inside start_energy; kept apart for the dissipated energy.
-  double start_elastic() const { return energy_.start_elastic; }
 
   void move_walls() {
     for (auto& wall : s_.walls) wall.move_to(s_.time);

@@ -41,7 +41,6 @@ struct TimeseriesRow {
   double floor_position, floor_velocity, max_overlap_ratio;
   long contacts, wall_contacts, rebuilds;
   observe::BedSurface bed;
-  double cell_temperature;         // Lan's computational-cell average: about the cell's mean velocity (eq. 3-1-2)
   double zone_temperature;         // eq. (3-1-9)'s zone temperatures, about each zone's instantaneous mean, over the bed
   long collisions, wall_collisions;  // contacts begun since the start
   observe::EnergyBudget budget;      // since the start, over all ranks
@@ -67,7 +66,7 @@ void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>&
           << r.global.granular_temperature << ',' << r.global.mass_center_height << ',' << r.floor_position << ','
           << r.floor_velocity << ',' << r.max_overlap_ratio << ',' << r.contacts << ',' << r.wall_contacts << ','
           << r.rebuilds << ',' << r.bed.height << ',' << r.bed.bulk_solids_fraction << ',' << r.bed.ballistic << ','
-          << r.cell_temperature << ',' << r.zone_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.budget.input() << ','
+          << r.global.granular_temperature << ',' << r.zone_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.budget.input() << ','
           << r.budget.change << ',' << r.budget.dissipated << ',' << r.budget_residual << '\n';
   });
 }
@@ -351,7 +350,6 @@ void DemRun::record(E& e) {
   if (floor_below)
     row.bed = observe::measure_bed_surface(st.particles, axis, observe::floor_position(frame.walls, c, axis), area,
                                            derived.reference_diameter, bed_thresholds, rank_reduce);
-  row.cell_temperature = row.global.granular_temperature;  // the free particles about their mean velocity
   row.zone_temperature = zones_now->instantaneous_temperature(st.particles);
   const auto [budget, start_energy] = global_energy_budget(e);
   row.budget = budget;
@@ -558,7 +556,9 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
   summary.number("shaking_acceleration", derived.shaking_acceleration);
   // Long-term means over the rows after output.average_start, with blocked standard errors.
   const double from = c.output.average_start;
-  put(summary, "cell_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.cell_temperature; }));
+  // Lan's cell-average temperature (eq. 3-1-2) is the free particles' about their mean velocity.
+  put(summary, "cell_temperature",
+      series_mean(rows, from, [](const TimeseriesRow& r) { return r.global.granular_temperature; }));
   put(summary, "zone_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.zone_temperature; }));
   // Lan's T_x, T_y, T_z of Table 4.6: each component's share of the cell-average temperature,
   // <C_a^2> / 3, so that they add up to it (his T_x = T_z at Gamma = 5 and 20 are a third of <C_x^2>).
