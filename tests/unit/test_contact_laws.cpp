@@ -32,24 +32,32 @@ template <>
 struct Example<WaltonBraun> {
   static constexpr const char* contact = "k1 = 1.0e5\nrestitution = 0.8\nfriction = 0.4";
   static constexpr const char* wall = "restitution = 0.6";
+  static constexpr const char* species = "";
 };
 template <>
 struct Example<LinearDashpot> {
   static constexpr const char* contact = "kn = 1.0e5\ngamma_n = 300.0\nfriction = 0.4";
   static constexpr const char* wall = "gamma_n = 900.0";
+  static constexpr const char* species = "";
+};
+template <>
+struct Example<HertzMindlin> {
+  static constexpr const char* contact = "restitution = 0.8\nfriction = 0.4";
+  static constexpr const char* wall = "restitution = 0.6\nyoungs_modulus = 2.0e8";
+  static constexpr const char* species = "youngs_modulus = 1.0e8\npoisson_ratio = 0.25\n";
 };
 
 constexpr double kDiameter = 0.002, kDensity = 2500.0;
 const double kMass = kDensity * M_PI / 6.0 * kDiameter * kDiameter * kDiameter;
 
 std::string case_text(std::string_view model, const std::string& contact, const std::string& wall,
-                      const std::string& particles = "init = \"random\"", int count = 20) {
+                      const std::string& particles = "init = \"random\"", int count = 20, const std::string& species = "") {
   std::ostringstream t;
   t << "[domain]\nlo = [0.0, 0.0, 0.0]\nhi = [0.02, 0.02, 0.02]\n"
     << "boundary = { x = \"periodic\", y = \"wall\", z = \"periodic\" }\n"
     << "[gravity]\nvector = [0.0, 0.0, 0.0]\n"
     << "[[species]]\nname = \"glass\"\ndiameter = " << kDiameter << "\ndensity = " << kDensity
-    << "\ncount = " << count << "\n"
+    << "\ncount = " << count << "\n" << species
     << "[particles]\n" << particles << "\n"
     << "[contact]\nmodel = \"" << model << "\"\n" << contact << "\n"
     << "[walls.ylo]\n" << wall << "\n"
@@ -59,7 +67,9 @@ std::string case_text(std::string_view model, const std::string& contact, const 
 
 template <class Law>
 CaseConfig example_case() {
-  return load_case_from_string(case_text(Law::name, Example<Law>::contact, Example<Law>::wall), "example.toml");
+  return load_case_from_string(case_text(Law::name, Example<Law>::contact, Example<Law>::wall, "init = \"random\"", 20,
+                                         Example<Law>::species),
+                               "example.toml");
 }
 
 struct Impact {
@@ -71,12 +81,14 @@ struct Impact {
 // contact lasts while the law exerts a force: until the overlap returns to zero, or earlier where
 // the force ends at a residual overlap (a latching law); that end is placed to within dt / 2.
 template <class Law>
-Impact integrate_impact(const typename Law::Params& p, double effective_mass, double v0, int steps) {
-  const double dt = Law::binary_contact(p, effective_mass).duration / steps;
+Impact integrate_impact(const typename Law::Params& p, const HeadOnImpact& impact, int steps) {
+  const double dt = Law::binary_contact(p, impact).duration / steps;
+  const double effective_mass = impact.effective_mass, v0 = impact.speed;
   typename Law::State state{};
   ContactKinematics k;
   k.normal = {1.0, 0.0, 0.0};
   k.effective_mass = effective_mass;
+  k.effective_radius = impact.effective_radius;
   double overlap = 0.0, speed = v0;  // closing speed, > 0 while approaching
   double force = 0.0, time = 0.0, last_force_time = 0.0;
   auto acceleration = [&](double dt_step) {
@@ -128,6 +140,7 @@ std::vector<ContactKinematics> contact_history(std::mt19937_64& rng, double effe
     slip -= dot(slip, n) * n;
     k.slip_velocity = slip * (scale * (i % 50 < 25 ? 1.0 : -0.7));
     k.effective_mass = effective_mass;
+    k.effective_radius = 0.25 * kDiameter;
     out.push_back(k);
   }
   return out;
@@ -153,18 +166,22 @@ TYPED_TEST(ContactLawContract, ImpactMatchesItsClosedForms) {
   const CaseConfig c = example_case<Law>();
   const auto pair = Law::pair_params(c.contact, c.species.front());
   const auto wall = Law::wall_params(pair, c.walls[2].contact, 0.0);
-  for (const auto& [params, m_eff] : {std::pair{pair, 0.5 * kMass}, std::pair{wall, kMass}}) {
-    const BinaryContact closed = Law::binary_contact(params, m_eff);
-    ASSERT_TRUE(std::isfinite(closed.duration) && closed.duration > 0.0);
+  const HeadOnImpact pair_at_rest{0.5 * kMass, 0.25 * kDiameter, 0.0}, wall_at_rest{kMass, 0.5 * kDiameter, 0.0};
+  for (const auto& [params, conditions] : {std::pair{pair, pair_at_rest}, std::pair{wall, wall_at_rest}}) {
     for (double v0 : {0.1, 1.0}) {
-      const Impact run = integrate_impact<Law>(params, m_eff, v0, 20000);
+      HeadOnImpact impact = conditions;
+      impact.speed = v0;
+      const BinaryContact closed = Law::binary_contact(params, impact);
+      ASSERT_TRUE(std::isfinite(closed.duration) && closed.duration > 0.0);
+      const Impact run = integrate_impact<Law>(params, impact, 20000);
       EXPECT_NEAR(run.duration, closed.duration, 1e-4 * closed.duration) << "v0 = " << v0;
       EXPECT_NEAR(run.restitution, closed.restitution, 1e-4) << "v0 = " << v0;
     }
   }
   // The wall table's key takes effect: the example walls are more dissipative than the pairs.
-  EXPECT_LT(Law::binary_contact(wall, 0.5 * kMass).restitution, Law::binary_contact(pair, 0.5 * kMass).restitution);
-  EXPECT_FALSE(Law::problem(pair, 0.5 * kMass));
+  const HeadOnImpact at_speed{0.5 * kMass, 0.25 * kDiameter, 1.0};
+  EXPECT_LT(Law::binary_contact(wall, at_speed).restitution, Law::binary_contact(pair, at_speed).restitution);
+  EXPECT_FALSE(Law::problem(pair, at_speed));
 }
 
 // F_ij = -F_ji at every step of a history: j sees the opposite normal and slip. Both sides are
@@ -236,9 +253,10 @@ TYPED_TEST(ContactLawContract, TimeStepResolvesContact) {
   using Law = TypeParam;
   const CaseConfig c = example_case<Law>();
   const auto p = Law::pair_params(c.contact, c.species.front());
+  const HeadOnImpact pair{0.5 * kMass, 0.25 * kDiameter, 1.0};
   for (int n : {5, 15, 20, 50}) {
-    const double dt = Law::time_step(p, kMass, n);
-    EXPECT_GE(Law::binary_contact(p, 0.5 * kMass).duration / dt, n * (1.0 - 1e-12)) << "n = " << n;
+    const double dt = Law::time_step(p, pair, n);
+    EXPECT_GE(Law::binary_contact(p, pair).duration / dt, n * (1.0 - 1e-12)) << "n = " << n;
   }
 }
 
@@ -251,10 +269,11 @@ TYPED_TEST(ContactLawContract, CaseTableRoundTripAndDerivedQuantities) {
   EXPECT_EQ(again.walls[2].contact, c.walls[2].contact);
   const DerivedQuantities d = derive(c);
   const auto p = Law::pair_params(c.contact, c.species.front());
+  const HeadOnImpact pair{0.5 * d.reference_mass, 0.25 * d.reference_diameter, d.impact_speed};
   EXPECT_EQ(d.model, Law::name);
-  EXPECT_EQ(d.contact_duration, Law::binary_contact(p, 0.5 * kMass).duration);
-  EXPECT_EQ(d.time_step, Law::time_step(p, kMass, c.run.collision_steps));
-  EXPECT_EQ(d.law_lines.size(), Law::describe(p, 0.5 * kMass).size());
+  EXPECT_EQ(d.contact_duration, Law::binary_contact(p, pair).duration);
+  EXPECT_EQ(d.time_step, Law::time_step(p, pair, c.run.collision_steps));
+  EXPECT_EQ(d.law_lines.size(), Law::describe(p, pair).size());
 }
 
 // Another law's key is named as such, and a key of its own is required where the law says so.
@@ -265,7 +284,8 @@ TYPED_TEST(ContactLawContract, OtherLawsKeysAreRefusedByName) {
       if (std::find(Law::keys.begin(), Law::keys.end(), key) != Law::keys.end()) continue;
       const std::string contact = std::string(Example<Law>::contact) + "\n" + std::string(key) + " = 1.0";
       try {
-        load_case_from_string(case_text(Law::name, contact, ""), "other.toml");
+        load_case_from_string(case_text(Law::name, contact, "", "init = \"random\"", 20, Example<Law>::species),
+                              "other.toml");
         ADD_FAILURE() << key << " of " << Other::name << " was accepted by " << Law::name;
       } catch (const InputError& e) {
         EXPECT_EQ(e.key(), "contact." + std::string(key));
@@ -284,7 +304,8 @@ TYPED_TEST(ContactLawContract, EngineConservesMomentumInObliqueImpact) {
                                "glass,0.008,0.0095,0.01,0.5,0,0.1\nglass,0.0101,0.0105,0.01,-0.3,0.05,0\n");
   const std::string particles = "init = \"file\"\nfile = \"" + csv.path() + "\"";
   const CaseConfig c =
-      load_case_from_string(case_text(Law::name, Example<Law>::contact, "", particles, 0), "oblique.toml");
+      load_case_from_string(case_text(Law::name, Example<Law>::contact, "", particles, 0, Example<Law>::species),
+                            "oblique.toml");
   auto engine = test::engine_for(c, 1);
   std::visit([&](auto& e) {
     auto& p = e.state().particles;

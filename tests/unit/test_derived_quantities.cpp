@@ -50,7 +50,7 @@ interval = 0.01
 
 // eq. (2-5-4) through the law: dt = (pi e / n) sqrt(m / (2 K1)).
 double wb_time_step(double restitution, int collision_steps, double k1, double mass) {
-  return WaltonBraun::time_step(WaltonBraun::make(k1, restitution, 1.0, 0.0), mass, collision_steps);
+  return WaltonBraun::time_step(WaltonBraun::make(k1, restitution, 1.0, 0.0), {0.5 * mass, 0.0, 0.0}, collision_steps);
 }
 
 }  // namespace
@@ -83,7 +83,7 @@ TEST(DerivedQuantities, TimeStepReproducesLanTables) {
 TEST(DerivedQuantities, ContactDurationAndStepsPerContact) {
   const double m = sphere_mass(0.003, 2490.0), k1 = 1.0e6, e = 0.9;
   const double t_r = 0.5 * M_PI * e * std::sqrt(m / (2.0 * k1));
-  EXPECT_NEAR(WaltonBraun::binary_contact(WaltonBraun::make(k1, e, 1.0, 0.0), 0.5 * m).duration, t_r / e + t_r, 1e-14 * t_r);
+  EXPECT_NEAR(WaltonBraun::binary_contact(WaltonBraun::make(k1, e, 1.0, 0.0), {0.5 * m, 0.0, 0.0}).duration, t_r / e + t_r, 1e-14 * t_r);
   EXPECT_NEAR(wb_time_step(e, 15, k1, m), 2.0 * t_r / 15.0, 1e-14 * t_r);
 
   const DerivedQuantities d = derive(load_case_from_string(bed_case(0.003, 2490.0, 239, 0.015, k1, "", 20), "c.toml"));

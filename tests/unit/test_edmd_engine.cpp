@@ -743,7 +743,9 @@ duration = 5.0
 )";
   EdmdEngine<2> e = engine_from<2>(text);
   e.advance_to(5.0);
-  if (collisions > 0) EXPECT_EQ(e.counters().collisions, collisions);
+  if (collisions > 0) {
+    EXPECT_EQ(e.counters().collisions, collisions);
+  }
   EXPECT_EQ(e.counters().tc_collisions, tc);
 }
 

@@ -113,7 +113,7 @@ TEST(LinearDashpot, HeadOnImpactMatchesClosedFormRestitutionAndDuration) {
           const double omega = std::sqrt(kn / i.effective_mass - 0.25 * gamma_n * gamma_n);
           const double tc = M_PI / omega;
           const double e = std::exp(-0.5 * gamma_n * tc);
-          const BinaryContact closed = LinearDashpot::binary_contact(i.params, i.effective_mass);
+          const BinaryContact closed = LinearDashpot::binary_contact(i.params, {i.effective_mass, 0.0, 0.0});
           ASSERT_NEAR(closed.duration, tc, 1e-14 * tc);
           ASSERT_NEAR(closed.restitution, e, 1e-14);
           const double dt = i.time_step;

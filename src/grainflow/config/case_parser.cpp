@@ -80,8 +80,11 @@ void reject_other_laws_keys(TomlReader& r, ContactSchemas schemas, const Contact
     for (std::string_view key : other.*keys) {
       const std::string name(key);
       if (!r.has(name) || std::find(std::begin(law.*keys), std::end(law.*keys), key) != std::end(law.*keys)) continue;
-      r.fail(name, "belongs to contact.model = \"" + std::string(other.name) + "\"; \"" + std::string(law.name) +
-                       "\" does not take it");
+      std::string owners;  // every law that takes it
+      for (const auto& owner : schemas)
+        if (std::find(std::begin(owner.*keys), std::end(owner.*keys), key) != std::end(owner.*keys))
+          owners += (owners.empty() ? "\"" : " or \"") + std::string(owner.name) + "\"";
+      r.fail(name, "belongs to contact.model = " + owners + "; \"" + std::string(law.name) + "\" does not take it");
     }
 }
 

@@ -23,6 +23,15 @@ class TomlReader;
 
 namespace grainflow::dem {
 
+// The conditions of a head-on binary impact without gravity: the bodies' effective mass and radius
+// (m_i m_j / (m_i + m_j) and R_i R_j / (R_i + R_j); a sphere's own against a wall) and their
+// closing speed. A law with linear springs needs the mass only; a Hertzian one all three.
+struct HeadOnImpact {
+  double effective_mass = 0.0;    // kg
+  double effective_radius = 0.0;  // m
+  double speed = 0.0;             // m/s
+};
+
 // A head-on binary contact without gravity, from the law's closed form: how long it lasts and the
 // ratio of separation to approach speed. A contact that never ends (overdamped) has an infinite
 // duration and restitution 0.
@@ -43,9 +52,9 @@ struct ParameterProblem {
 
 template <class L>
 concept ContactLaw = requires(const typename L::Params& params, typename L::State& state, const ContactKinematics& kin,
-                              double number, int count, TomlReader& table, ContactParameters& read_into,
+                              const HeadOnImpact& impact, double number, int count, TomlReader& table, ContactParameters& read_into,
                               const ContactParameters& wall, const ContactConfig& contact,
-                              const SpeciesConfig& species) {
+                              const SpeciesConfig& species, const std::vector<SpeciesConfig>& species_list) {
   // Identity and case keys.
   { L::name } -> std::convertible_to<std::string_view>;
   requires std::ranges::range<decltype(L::keys)>;       // [contact] keys besides model and friction
@@ -58,17 +67,21 @@ concept ContactLaw = requires(const typename L::Params& params, typename L::Stat
   // against a wall given its own law keys and friction.
   { L::pair_params(contact, species) } -> std::same_as<typename L::Params>;
   { L::wall_params(params, wall, number) } -> std::same_as<typename L::Params>;
-  { L::problem(params, number) } -> std::same_as<std::optional<ParameterProblem>>;
-  // Closed forms (effective mass, or mass of the lightest sphere for the time step).
-  { L::binary_contact(params, number) } -> std::same_as<BinaryContact>;
-  { L::time_step(params, number, count) } -> std::same_as<double>;  // resolves a contact in >= count steps
-  { L::loading_stiffness(params) } -> std::same_as<double>;         // N/m, for overlap estimates
-  { L::tangential_stiffness(params) } -> std::same_as<double>;
-  { L::describe(params, number) } -> std::same_as<std::vector<CheckLine>>;
+  { L::problem(params, impact) } -> std::same_as<std::optional<ParameterProblem>>;
+  // What the law needs of the species (a key of [[species]], the reason naming the species), checked
+  // before any parameters are made.
+  { L::species_problem(species_list) } -> std::same_as<std::optional<ParameterProblem>>;
+  // Closed forms of a head-on impact (for the time step: two of the lightest spheres).
+  { L::binary_contact(params, impact) } -> std::same_as<BinaryContact>;
+  { L::time_step(params, impact, count) } -> std::same_as<double>;  // resolves a contact in >= count steps
+  { L::loading_stiffness(params, impact) } -> std::same_as<double>;  // N/m, giving its peak overlap v sqrt(m / k)
+  { L::tangential_stiffness(params, impact) } -> std::same_as<double>;  // N/m, at that overlap
+  { L::describe(params, impact) } -> std::same_as<std::vector<CheckLine>>;
   // The force on i (normal magnitude, tangential vector), advancing the pair's memory by dt.
   { L::force(params, state, kin, number) } -> std::same_as<ContactForce>;
-  // J, the energy the contact's springs hold at this overlap and memory (the energy budget).
-  { L::elastic_energy(params, std::as_const(state), number) } -> std::same_as<double>;
+  // J, the energy the contact's springs hold at this overlap (and effective radius) and memory (the
+  // energy budget).
+  { L::elastic_energy(params, std::as_const(state), number, number) } -> std::same_as<double>;
 };
 
 }  // namespace grainflow::dem

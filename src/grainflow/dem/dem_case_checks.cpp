@@ -9,6 +9,7 @@
 
 #include "grainflow/config/case_checks.hpp"
 #include "grainflow/dem/bump_lattice.hpp"
+#include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
 
@@ -29,6 +30,9 @@ constexpr double kMaxRandomSolidsFraction = 0.5;
 void validate_dem_case(const CaseConfig& c) {
   if (c.engine.dimension != 3)
     fail(c, "engine.dimension", "the DEM engine simulates spheres in 3D; dimension = 2 is not available yet");
+  visit_contact_law(c.contact.model, [&]<ContactLaw Law>() {
+    if (const auto problem = Law::species_problem(c.species)) fail(c, "species." + problem->key, problem->reason);
+  });
   const dem::DerivedQuantities d = dem::derive(c);
 
   if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");

@@ -289,7 +289,7 @@ class DemEngine {
         const double overlap = p.radius[i] + p.radius[j] - norm(p.position[i] - (p.position[j] + shifts[pairs_.shift[k]]));
         const int bump_face = std::max(p.wall[i], p.wall[j]);
         e += Law::elastic_energy(bump_face < 0 ? pair_params_ : bump_params_[bump_face], contacts_.pair_state[k],
-                                 std::max(0.0, overlap));
+                                 std::max(0.0, overlap), p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]));
       }
     }
     for (std::size_t w = 0; w < s_.walls.size(); ++w) {
@@ -297,7 +297,7 @@ class DemEngine {
       for (std::size_t i = 0; i < p.size(); ++i) {
         if (!contacts_.wall_touching[w][i] || !p.counted(i)) continue;
         const double overlap = p.radius[i] - wall.inward * (p.position[i][wall.axis] - wall.position);
-        e += Law::elastic_energy(wall_params_[w], contacts_.wall_state[w][i], std::max(0.0, overlap));
+        e += Law::elastic_energy(wall_params_[w], contacts_.wall_state[w][i], std::max(0.0, overlap), p.radius[i]);
       }
     }
     return e;
@@ -463,6 +463,7 @@ class DemEngine {
           c.slip_velocity = relative - c.normal_velocity * c.normal -
                             cross(ri * p.angular_velocity[i] + rj * p.angular_velocity[j], c.normal);
           c.effective_mass = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
+          c.effective_radius = ri * rj / sum;  // a law that does not read it leaves it to the optimiser
           const int bump_face = std::max(p.wall[i], p.wall[j]);  // -1 unless one is a wall bump
           const Params& params = bump_face < 0 ? pair_params_ : bump_params_[bump_face];
           const ContactForce f = Law::force(params, contacts_.pair_state[k], c, dt);
@@ -541,6 +542,7 @@ class DemEngine {
         c.normal_velocity = dot(relative, normal);
         c.slip_velocity = relative - c.normal_velocity * normal - cross(ri * p.angular_velocity[i], normal);
         c.effective_mass = p.mass[i];
+        c.effective_radius = ri;
         const ContactForce f = Law::force(params, states[i], c, dt);
         const Vec3 total = f.normal * normal + f.tangential;
         p.force[i] += total;

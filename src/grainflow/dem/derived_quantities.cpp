@@ -24,6 +24,34 @@ double default_expansion_time(double diameter, double gravity, double contact_du
   return std::max(kExpansionFallTimes * fall, kExpansionContactDurations * contact_duration);
 }
 
+double floor_peak_speed(const CaseConfig& c) {
+  if (!c.drive.enabled) return 0.0;
+  // Maximise |v(t)| over one period numerically (the phases differ by axis).
+  double f_min = 0.0;
+  for (int axis = 0; axis < 3; ++axis)
+    if (c.drive.frequency[axis] > 0.0 && (f_min == 0.0 || c.drive.frequency[axis] < f_min)) f_min = c.drive.frequency[axis];
+  if (f_min == 0.0) return 0.0;
+  double speed_sq = 0.0;
+  const int samples = 2000;
+  for (int k = 0; k < samples; ++k) {
+    const double t = k / (samples * f_min);
+    double s2 = 0.0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double w = 2.0 * M_PI * c.drive.frequency[axis];
+      const double v = c.drive.amplitude[axis] * w * std::cos(w * t + c.drive.phase[axis]);
+      s2 += v * v;
+    }
+    speed_sq = std::max(speed_sq, s2);
+  }
+  return std::sqrt(speed_sq);
+}
+
+double characteristic_impact_speed(const CaseConfig& c, double diameter, double floor_speed) {
+  const double fall = std::sqrt(2.0 * norm(c.gravity) * diameter);
+  const double thermal = std::sqrt(3.0 * std::max(0.0, c.particles.initial_temperature));
+  return std::max({floor_speed, fall, thermal, norm(c.particles.initial_velocity)});
+}
+
 DerivedQuantities derive(const CaseConfig& c) {
   DerivedQuantities d;
   d.model = c.contact.model;
@@ -44,20 +72,21 @@ DerivedQuantities derive(const CaseConfig& c) {
   d.reference_mass = lightest;
   d.reference_diameter = ref.diameter;
 
+  d.impact_speed = characteristic_impact_speed(c, ref.diameter, floor_peak_speed(c));
   visit_contact_law(c.contact.model, [&]<ContactLaw Law>() {
     const typename Law::Params p = Law::pair_params(c.contact, ref);
-    const double pair_mass = 0.5 * d.reference_mass;
-    const BinaryContact binary = Law::binary_contact(p, pair_mass);
+    const HeadOnImpact pair{0.5 * d.reference_mass, 0.25 * ref.diameter, d.impact_speed};
+    const BinaryContact binary = Law::binary_contact(p, pair);
     d.stiffness_key = Law::stiffness_key;
     d.calibrated_by_stiffness = Law::calibrated_by_stiffness;
-    d.normal_stiffness = Law::loading_stiffness(p);
-    d.tangential_stiffness = Law::tangential_stiffness(p);
+    d.normal_stiffness = Law::loading_stiffness(p, pair);
+    d.tangential_stiffness = Law::tangential_stiffness(p, pair);
     d.restitution = binary.restitution;
     d.contact_duration = binary.duration;
-    d.law_lines = Law::describe(p, pair_mass);
-    d.law_problem = Law::problem(p, pair_mass);
-    d.time_step = Law::time_step(p, d.reference_mass, c.run.collision_steps);
-    d.time_step_lan = Law::time_step(p, d.reference_mass, kLanCollisionSteps);
+    d.law_lines = Law::describe(p, pair);
+    d.law_problem = Law::problem(p, pair);
+    d.time_step = Law::time_step(p, pair, c.run.collision_steps);
+    d.time_step_lan = Law::time_step(p, pair, kLanCollisionSteps);
   });
   if (c.run.time_step > 0.0) {
     d.time_step = c.run.time_step;
@@ -78,32 +107,12 @@ DerivedQuantities derive(const CaseConfig& c) {
     }
 
   if (c.drive.enabled) {
-    double speed_sq = 0.0, mean_sq = 0.0;
+    double mean_sq = 0.0;
     for (int axis = 0; axis < 3; ++axis) {
       const double v0 = c.drive.amplitude[axis] * 2.0 * M_PI * c.drive.frequency[axis];
       mean_sq += 0.5 * v0 * v0;
     }
-    // Peak speed of the face: maximise |v(t)| over one period numerically (phases differ by axis).
-    const double f_min = [&] {
-      double f = 0.0;
-      for (int axis = 0; axis < 3; ++axis)
-        if (c.drive.frequency[axis] > 0.0 && (f == 0.0 || c.drive.frequency[axis] < f)) f = c.drive.frequency[axis];
-      return f;
-    }();
-    if (f_min > 0.0) {
-      const int samples = 2000;
-      for (int k = 0; k < samples; ++k) {
-        const double t = k / (samples * f_min);
-        double s2 = 0.0;
-        for (int axis = 0; axis < 3; ++axis) {
-          const double w = 2.0 * M_PI * c.drive.frequency[axis];
-          const double v = c.drive.amplitude[axis] * w * std::cos(w * t + c.drive.phase[axis]);
-          s2 += v * v;
-        }
-        speed_sq = std::max(speed_sq, s2);
-      }
-    }
-    d.floor_peak_speed = std::sqrt(speed_sq);
+    d.floor_peak_speed = floor_peak_speed(c);
     const double mean_diameter_g = ref.diameter * (d.gravity_magnitude > 0.0 ? d.gravity_magnitude : 9.81);
     d.boundary_fluctuation_velocity = std::sqrt(mean_sq / 3.0) / std::sqrt(mean_diameter_g);
     const int g = d.gravity_axis;

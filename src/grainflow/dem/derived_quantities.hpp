@@ -29,6 +29,13 @@ inline constexpr double kExpansionFallTimes = 2.0;
 inline constexpr double kExpansionContactDurations = 200.0;
 double default_expansion_time(double diameter, double gravity, double contact_duration);
 
+// m/s, the peak speed of the driven face (0 without a drive).
+double floor_peak_speed(const CaseConfig& c);
+// m/s, the impact speed a rate-dependent law (Hertz) is judged at: the largest of the floor's peak
+// speed, the fall over one diameter sqrt(2 g d), the initial thermal speed sqrt(3 T) and the initial
+// velocity. 0 when nothing moves the particles.
+double characteristic_impact_speed(const CaseConfig& c, double diameter, double floor_speed);
+
 struct DerivedQuantities {
   int reference_species = 0;        // the lightest moving species: it sets the time step
   double reference_mass = 0.0;      // kg
@@ -39,6 +46,7 @@ struct DerivedQuantities {
   bool calibrated_by_stiffness = false;  // `grainflow calibrate` may choose that key
   double normal_stiffness = 0.0;         // N/m, loading stiffness: overlap estimates v sqrt(m / k)
   double tangential_stiffness = 0.0;     // N/m
+  double impact_speed = 0.0;             // m/s, closing speed of the binary contact below (characteristic_impact_speed)
   double restitution = 0.0;              // binary head-on contact
   double contact_duration = 0.0;         // s, binary contact of two reference spheres
   std::vector<CheckLine> law_lines;      // what `grainflow check` prints of the law

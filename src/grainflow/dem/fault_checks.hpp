@@ -36,6 +36,19 @@ inline std::string format(const char* fmt, double a, double b = 0.0, double c = 
 }
 inline std::string vec(const Vec3& v) { return format("(%.6g, %.6g, %.6g)", v.x, v.y, v.z); }
 inline bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+// The normal stiffness as the user sets it: a spring constant (k1, kn), or for a law whose
+// stiffness is the material's the linear spring its impact is equivalent to.
+inline std::string stiffness_now(const DerivedQuantities& d) {
+  const std::string value = format("%.4g", d.normal_stiffness) + " N/m";
+  return d.calibrated_by_stiffness ? d.stiffness_key + " = " + value
+                                   : "an equivalent linear stiffness of " + value + " (from " + d.stiffness_key + ")";
+}
+// What reaching a linear stiffness `needed` asks of the case: the key's value, or for a Hertz
+// material the factor on its modulus (the equivalent stiffness m* (v / delta_max)^2 grows as E^4/5).
+inline std::string stiffness_needed(const DerivedQuantities& d, double needed) {
+  if (d.calibrated_by_stiffness) return d.stiffness_key + " >= " + format("%.4g", needed) + " N/m";
+  return d.stiffness_key + " raised " + format("%.3g", std::pow(needed / d.normal_stiffness, 1.25)) + "-fold";
+}
 }  // namespace fault_detail
 
 // "particle 7 at (x, y, z) m moving at (vx, vy, vz) m/s".
@@ -62,8 +75,7 @@ inline std::optional<std::size_t> first_non_finite(const ParticleStore& p) {
 // Walton–Braun) with n = 20 steps per collision (Lan 1994), for the lightest moving species.
 inline std::string time_step_cause(const DerivedQuantities& d) {
   std::string text = "likely cause: the time step dt = " + fault_detail::format("%.4g", d.time_step) +
-                     " s is too large for " + d.stiffness_key + " = " + fault_detail::format("%.4g", d.normal_stiffness) +
-                     " N/m (" + fault_detail::format("%.3g", d.steps_per_contact) +
+                     " s is too large for " + fault_detail::stiffness_now(d) + " (" + fault_detail::format("%.3g", d.steps_per_contact) +
                      " steps per contact); the contact law's time-step bound with n = " +
                      std::to_string(kLanCollisionSteps) + " steps per collision suggests dt <= " +
                      fault_detail::format("%.4g", d.time_step_lan) + " s";
@@ -119,10 +131,9 @@ inline void check_escape(const DemState& s, const DerivedQuantities& d) {
                      fault_detail::format("%.9g", s.time) + " s: its centre lies " +
                      fault_detail::format("%.4g", escape->beyond) + " m beyond the wall (more than a diameter, " +
                      fault_detail::format("%.4g", 2.0 * r) + " m); likely cause: too soft a wall or too large a time step "
-                     "for the impact speed: at " + fault_detail::format("%.4g", speed) + " m/s a wall with " + d.stiffness_key + " = " +
-                     fault_detail::format("%.4g", d.normal_stiffness) + " N/m lets it in " + fault_detail::format("%.4g", penetration) +
-                     " m; keeping that below 1% of d needs " + d.stiffness_key + " >= " + fault_detail::format("%.4g", needed_k1) +
-                     " N/m, and dt = " + fault_detail::format("%.4g", d.time_step) + " s moves it " +
+                     "for the impact speed: at " + fault_detail::format("%.4g", speed) + " m/s a wall with " +
+                     fault_detail::stiffness_now(d) + " lets it in " + fault_detail::format("%.4g", penetration) +
+                     " m; keeping that below 1% of d needs " + fault_detail::stiffness_needed(d, needed_k1) + ", and dt = " + fault_detail::format("%.4g", d.time_step) + " s moves it " +
                      fault_detail::format("%.4g", speed * d.time_step) + " m per step";
   throw RunError(text);
 }
@@ -172,12 +183,12 @@ inline std::string overlap_halt_message(const DemState& s, const NeighborPairs& 
                                 std::to_string(id[now.j]);
     text += " (" + format("%.4g", now.ratio) + " of a diameter)";
   }
-  const std::string& key = d.stiffness_key;
-  text += "; likely cause: too soft a contact (" + key + " = " + format("%.4g", d.normal_stiffness) +
-          " N/m) for the impact speeds; Lan's 1 % criterion (overlap <= 0.01 d) suggests " + key + " >= " +
-          format("%.4g", d.normal_stiffness * std::pow(max_ratio / 0.01, 2)) + " N/m";
+  text += "; likely cause: too soft a contact (" + fault_detail::stiffness_now(d) +
+          ") for the impact speeds; Lan's 1 % criterion (overlap <= 0.01 d) suggests " +
+          fault_detail::stiffness_needed(d, d.normal_stiffness * std::pow(max_ratio / 0.01, 2));
   if (halt_overlap != 0.01)
-    text += " (" + format("%.4g", d.normal_stiffness * std::pow(max_ratio / halt_overlap, 2)) + " N/m for the halt bound)";
+    text += " (" + fault_detail::stiffness_needed(d, d.normal_stiffness * std::pow(max_ratio / halt_overlap, 2)) +
+            " for the halt bound)";
   text += ", or lower the impact speeds";
   return text;
 }

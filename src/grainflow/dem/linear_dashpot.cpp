@@ -44,27 +44,27 @@ LinearDashpot::Params LinearDashpot::wall_params(const Params& pair, const Conta
   return p;
 }
 
-std::optional<ParameterProblem> LinearDashpot::problem(const Params& p, double effective_mass) {
-  if (std::isfinite(binary_contact(p, effective_mass).duration)) return std::nullopt;
+std::optional<ParameterProblem> LinearDashpot::problem(const Params& p, const HeadOnImpact& impact) {
+  if (std::isfinite(binary_contact(p, impact).duration)) return std::nullopt;
   return ParameterProblem{"gamma_n", "the contact is overdamped (gamma_n >= 2 sqrt(kn / m_eff)): spheres would never separate"};
 }
 
-BinaryContact LinearDashpot::binary_contact(const Params& p, double effective_mass) {
-  const double omega0_sq = p.kn / effective_mass;
+BinaryContact LinearDashpot::binary_contact(const Params& p, const HeadOnImpact& impact) {
+  const double omega0_sq = p.kn / impact.effective_mass;
   const double omega_sq = omega0_sq - 0.25 * p.gamma_n * p.gamma_n;
   if (!(omega_sq > 0.0)) return {std::numeric_limits<double>::infinity(), 0.0};
   const double duration = M_PI / std::sqrt(omega_sq);
   return {duration, std::exp(-0.5 * p.gamma_n * duration)};
 }
 
-double LinearDashpot::time_step(const Params& p, double mass, int collision_steps) {
-  return binary_contact(p, 0.5 * mass).duration / collision_steps;
+double LinearDashpot::time_step(const Params& p, const HeadOnImpact& pair, int collision_steps) {
+  return binary_contact(p, pair).duration / collision_steps;
 }
 
-std::vector<CheckLine> LinearDashpot::describe(const Params& p, double effective_mass) {
+std::vector<CheckLine> LinearDashpot::describe(const Params& p, const HeadOnImpact& impact) {
   return {{"kn, kt", fmt::format("{:.6g}, {:.6g} N/m", p.kn, p.kt)},
           {"gamma_n, gamma_t", fmt::format("{:.6g}, {:.6g} 1/s", p.gamma_n, p.gamma_t)},
-          {"e (binary, closed form)", fmt::format("{:.6g}", binary_contact(p, effective_mass).restitution)}};
+          {"e (binary, closed form)", fmt::format("{:.6g}", binary_contact(p, impact).restitution)}};
 }
 
 }  // namespace grainflow::dem

@@ -63,7 +63,7 @@ struct LinearDashpot {
   }
 
   // The normal spring's 1/2 kn overlap^2 and the tangential spring's 1/2 kt |shear|^2.
-  static double elastic_energy(const Params& p, const State& s, double overlap) {
+  static double elastic_energy(const Params& p, const State& s, double overlap, double /*effective_radius*/) {
     return 0.5 * p.kn * overlap * overlap + 0.5 * p.kt * norm2(s.shear);
   }
 
@@ -74,15 +74,16 @@ struct LinearDashpot {
   static Params pair_params(const ContactConfig& contact, const SpeciesConfig& reference);
   static Params wall_params(const Params& pair, const ContactParameters& wall, double friction);
   // Overdamped (gamma_n >= 2 sqrt(kn / m_eff)): the spheres would never separate.
-  static std::optional<ParameterProblem> problem(const Params& p, double effective_mass);
+  static std::optional<ParameterProblem> problem(const Params& p, const HeadOnImpact& impact);
+  static std::optional<ParameterProblem> species_problem(const std::vector<SpeciesConfig>&) { return std::nullopt; }
 
   // The damped oscillator's half period pi / sqrt(kn/m - gamma_n^2/4) and e = exp(-gamma_n t_c / 2).
-  static BinaryContact binary_contact(const Params& p, double effective_mass);
-  // A pair of the lightest spheres' contact in `collision_steps` steps.
-  static double time_step(const Params& p, double mass, int collision_steps);
-  static double loading_stiffness(const Params& p) { return p.kn; }
-  static double tangential_stiffness(const Params& p) { return p.kt; }
-  static std::vector<CheckLine> describe(const Params& p, double effective_mass);
+  static BinaryContact binary_contact(const Params& p, const HeadOnImpact& impact);
+  // The pair's contact in `collision_steps` steps.
+  static double time_step(const Params& p, const HeadOnImpact& pair, int collision_steps);
+  static double loading_stiffness(const Params& p, const HeadOnImpact&) { return p.kn; }
+  static double tangential_stiffness(const Params& p, const HeadOnImpact&) { return p.kt; }
+  static std::vector<CheckLine> describe(const Params& p, const HeadOnImpact& impact);
 };
 
 }  // namespace grainflow::dem

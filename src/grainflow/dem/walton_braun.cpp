@@ -48,15 +48,17 @@ WaltonBraun::Params WaltonBraun::wall_params(const Params& pair, const ContactPa
   return p;
 }
 
-BinaryContact WaltonBraun::binary_contact(const Params& p, double effective_mass) {
-  return {0.5 * M_PI * (std::sqrt(effective_mass / p.k1) + std::sqrt(effective_mass / p.k2)), p.restitution};
+BinaryContact WaltonBraun::binary_contact(const Params& p, const HeadOnImpact& impact) {
+  const double m = impact.effective_mass;
+  return {0.5 * M_PI * (std::sqrt(m / p.k1) + std::sqrt(m / p.k2)), p.restitution};
 }
 
-double WaltonBraun::time_step(const Params& p, double mass, int collision_steps) {
+double WaltonBraun::time_step(const Params& p, const HeadOnImpact& pair, int collision_steps) {
+  const double mass = 2.0 * pair.effective_mass;  // exact: the lightest sphere's
   return M_PI * p.restitution / collision_steps * std::sqrt(mass / (2.0 * p.k1));
 }
 
-std::vector<CheckLine> WaltonBraun::describe(const Params& p, double) {
+std::vector<CheckLine> WaltonBraun::describe(const Params& p, const HeadOnImpact&) {
   return {{"K1 (loading)", fmt::format("{:.6g} N/m", p.k1)},
           {"K2 = K1/e^2 (unloading)", fmt::format("{:.6g} N/m", p.k2)},
           {"e = sqrt(K1/K2)", fmt::format("{:.6g}", p.restitution)},

@@ -51,15 +51,16 @@ struct WaltonBraun {
   // ratk defaults to Mindlin's 2 (1 - nu) / (2 - nu), nu of the reference species or 0.3.
   static Params pair_params(const ContactConfig& contact, const SpeciesConfig& reference);
   static Params wall_params(const Params& pair, const ContactParameters& wall, double friction);
-  static std::optional<ParameterProblem> problem(const Params&, double) { return std::nullopt; }
+  static std::optional<ParameterProblem> problem(const Params&, const HeadOnImpact&) { return std::nullopt; }
+  static std::optional<ParameterProblem> species_problem(const std::vector<SpeciesConfig>&) { return std::nullopt; }
 
   // Loading quarter-period on K1 plus unloading on K2; e = sqrt(K1 / K2) exactly.
-  static BinaryContact binary_contact(const Params& p, double effective_mass);
-  // eq. (2-5-4): dt = (pi e / n) sqrt(m / (2 K1)), m the lightest sphere.
-  static double time_step(const Params& p, double mass, int collision_steps);
-  static double loading_stiffness(const Params& p) { return p.k1; }
-  static double tangential_stiffness(const Params& p) { return p.k0; }
-  static std::vector<CheckLine> describe(const Params& p, double effective_mass);
+  static BinaryContact binary_contact(const Params& p, const HeadOnImpact& impact);
+  // eq. (2-5-4): dt = (pi e / n) sqrt(m / (2 K1)), m the lightest sphere (twice the pair's m_eff).
+  static double time_step(const Params& p, const HeadOnImpact& pair, int collision_steps);
+  static double loading_stiffness(const Params& p, const HeadOnImpact&) { return p.k1; }
+  static double tangential_stiffness(const Params& p, const HeadOnImpact&) { return p.k0; }
+  static std::vector<CheckLine> describe(const Params& p, const HeadOnImpact& impact);
 
   // Residual overlap alpha0 at which the unloading line K2 reaches zero force.
   static double residual_overlap(const Params& p, const State& s) {
@@ -69,7 +70,7 @@ struct WaltonBraun {
   // What the springs give back: unloading on K2 from here to alpha0, 1/2 K2 (alpha - alpha0)^2 (the
   // rest of the loading work, 1 - e^2 of it, is lost), and the tangential force's F^2 / (2 K0), its
   // release at the initial stiffness K0 (after a reversal the stiffness starts at K0).
-  static double elastic_energy(const Params& p, const State& s, double overlap) {
+  static double elastic_energy(const Params& p, const State& s, double overlap, double /*effective_radius*/) {
     const double stretch = std::max(0.0, overlap - residual_overlap(p, s));
     const double tangential = p.k0 > 0.0 ? 0.5 * norm2(s.tangential_force) / p.k0 : 0.0;
     return 0.5 * p.k2 * stretch * stretch + tangential;
