@@ -22,10 +22,11 @@ TEST(ObserverRegistry, SoftSphereRunGetsTheTablesItsCaseEnables) {
             (std::vector<std::string>{"profiles"}));  // the zone profiles always
   f.c.tracers.enabled = true;
   f.c.field.enabled = true;
+  f.c.output.stresses = true;
   EXPECT_EQ(names(run::make_observers(run::EngineKind::dem, f.context(1e-5), f.at(0.0))),
-            (std::vector<std::string>{"field", "tracers", "profiles"}));
+            (std::vector<std::string>{"field", "tracers", "stresses", "profiles"}));
   EXPECT_EQ(run::observer_names(run::EngineKind::dem),
-            (std::vector<std::string>{"trajectory", "zone_series", "field", "tracers", "profiles"}));
+            (std::vector<std::string>{"trajectory", "zone_series", "field", "tracers", "stresses", "profiles"}));
 }
 
 TEST(ObserverRegistry, EventDrivenConstitutiveTableBuildsOnTheProfilesAndStresses) {

@@ -158,6 +158,7 @@ struct OutputConfig {
   double average_start = 0.0;     // s, long-term averages start here
   long long average_start_collisions = 0;  // edmd: ... and not before this many particle collisions
   bool collision_stresses = true; // edmd: stresses.csv, walls.csv, collision_angles.csv (a per-collision observer)
+  bool stresses = false;          // dem: stresses.csv, walls.csv from the contact forces, sampled
   double zone_thickness = 0.0;    // m, profile zones along gravity (0 = reference species diameter)
   // Bed height and bulk solids fraction (Lan 1994 section 4.2; observe/bed_surface.hpp):
   double bed_gap_fraction = 0.05;     // a zone above the densest one emptier than this ends the bed

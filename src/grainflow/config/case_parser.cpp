@@ -425,6 +425,9 @@ void read_output(TomlReader& top, CaseConfig& c) {
   o.collision_stresses = r.boolean("collision_stresses", true);
   if (r.has("collision_stresses") && c.engine.kind != "edmd")
     r.fail("collision_stresses", "only the event-driven engine measures stresses from its collisions");
+  o.stresses = r.boolean("stresses", false);
+  if (r.has("stresses") && c.engine.kind != "dem")
+    r.fail("stresses", "is the soft-sphere engine's; the event-driven engine's are output.collision_stresses");
   o.zone_thickness = r.number("zone_thickness", 0.0);
   if (o.zone_thickness < 0.0) r.fail("zone_thickness", "must not be negative");
   o.bed_gap_fraction = r.number("bed_gap_fraction", o.bed_gap_fraction);

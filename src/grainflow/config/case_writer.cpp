@@ -208,6 +208,8 @@ void write_output(Out& o, const CaseConfig& c) {
   if (c.engine.kind == "edmd") {
     o.key("average_start_collisions", x.average_start_collisions);
     o.key("collision_stresses", x.collision_stresses);
+  } else {
+    o.key("stresses", x.stresses);
   }
 }
 

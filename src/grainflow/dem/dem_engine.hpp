@@ -243,6 +243,66 @@ class DemEngine {
     return c;
   }
 
+  // Each touching contact's force now, once: visit(i, wall, from, force) with the force on particle
+  // i and `from` its partner's centre (the periodic image nearest i), or with wall >= 0 the contact
+  // point on that wall. Recomputed from the contacts' memory without advancing it (dt = 0): the
+  // step's elastic forces, the damping at the full-step velocities. Pairs of two fixed particles
+  // (a frozen base pressed into itself) carry no stress and are left out.
+  template <class Visit>
+  void for_each_contact_force(Visit&& visit) const {
+    const ParticleStore& p = s_.particles;
+    const auto shifts = s_.box.shift_table();
+    for (std::size_t i = 0; i + 1 < pairs_.offsets.size(); ++i) {
+      if (p.ghost[i]) continue;
+      for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k) {
+        if (!contacts_.pair_touching[k]) continue;
+        const std::uint32_t j = pairs_.partner[k];
+        if (p.motion[i] != Motion::free && p.motion[j] != Motion::free) continue;
+        const Vec3 xj = p.position[j] + shifts[pairs_.shift[k]];
+        const Vec3 d = p.position[i] - xj;
+        const double r = norm(d), ri = p.radius[i], rj = p.radius[j];
+        if (!(r < ri + rj) || r == 0.0) continue;
+        ContactKinematics c;
+        c.normal = d * (1.0 / r);
+        c.overlap = ri + rj - r;
+        const Vec3 relative = p.velocity[i] - p.velocity[j];
+        c.normal_velocity = dot(relative, c.normal);
+        c.slip_velocity = relative - c.normal_velocity * c.normal -
+                          cross(ri * p.angular_velocity[i] + rj * p.angular_velocity[j], c.normal);
+        c.effective_mass = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
+        c.effective_radius = ri * rj / (ri + rj);
+        const int bump_face = std::max(p.wall[i], p.wall[j]);
+        State memory = contacts_.pair_state[k];
+        const ContactForce f = Law::force(bump_face < 0 ? pair_params_ : bump_params_[bump_face], memory, c, 0.0);
+        visit(static_cast<std::uint32_t>(i), -1, xj, f.normal * c.normal + f.tangential);
+      }
+    }
+    for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+      const FlatWall& wall = s_.walls[w];
+      Vec3 normal;
+      normal[wall.axis] = wall.inward;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (!contacts_.wall_touching[w][i] || p.motion[i] != Motion::free || p.ghost[i]) continue;
+        const double ri = p.radius[i];
+        const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
+        if (!(gap < ri)) continue;
+        ContactKinematics c;
+        c.normal = normal;
+        c.overlap = ri - gap;
+        const Vec3 relative = p.velocity[i] - wall.velocity;
+        c.normal_velocity = dot(relative, normal);
+        c.slip_velocity = relative - c.normal_velocity * normal - cross(ri * p.angular_velocity[i], normal);
+        c.effective_mass = p.mass[i];
+        c.effective_radius = ri;
+        State memory = contacts_.wall_state[w][i];
+        const ContactForce f = Law::force(wall_params_[w], memory, c, 0.0);
+        Vec3 contact = p.position[i];
+        contact[wall.axis] = wall.position;
+        visit(static_cast<std::uint32_t>(i), static_cast<int>(w), contact, f.normal * normal + f.tangential);
+      }
+    }
+  }
+
   // Positions with periodic crossings undone, for diffusion and outputs.
   Vec3 unwrapped_position(std::size_t i) const { return s_.box.unwrapped(s_.particles.position[i], s_.particles.image[i]); }
 

@@ -7,16 +7,9 @@
 #include "grainflow/analysis/savage_jeffrey.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/analysis/least_squares_line.hpp"
+#include "grainflow/observe/stress_files.hpp"
 
 namespace grainflow::observe {
-namespace {
-
-constexpr const char* kAxisNames = "xyz";
-
-std::string component_name(int a, int b) { return std::string{kAxisNames[a], kAxisNames[b]}; }
-
-}  // namespace
-
 CollisionStressObserver::CollisionStressObserver(const RunContext& run, const Frame& start)
     : c_(*run.c),
       frame_(&start),
@@ -28,11 +21,7 @@ CollisionStressObserver::CollisionStressObserver(const RunContext& run, const Fr
       next_(first_grid_index(start.time, interval_)) {}
 
 double CollisionStressObserver::wall_area(int wall) const {
-  const int axis = frame_->walls[static_cast<std::size_t>(wall)].axis;
-  double area = 1.0;
-  for (int a = 0; a < dim_; ++a)
-    if (a != axis) area *= frame_->box->length(a);
-  return area;
+  return observe::wall_area(*frame_->box, frame_->walls[static_cast<std::size_t>(wall)].axis, dim_);
 }
 
 void CollisionStressObserver::on_pair(const PairCollision& c) {
@@ -137,62 +126,13 @@ void CollisionStressObserver::write(const Frame& last, OutputSink& out) {
 }
 
 void CollisionStressObserver::write_stresses(const std::string& path, const std::vector<StripStress>& strips) const {
-  const bool walls = strips_.between_walls();
-  const char* stress = dim_ == 2 ? "N/m" : "Pa";
-  const char* measure = dim_ == 2 ? "m^2" : "m^3";
-  io::write_atomically(path, [&](std::ostream& out) {
-    out << "# units: y m (strip centre), stresses " << stress
-        << " (P_ab: flux of b-momentum across a plane normal to a; compressive positive), *_error: standard errors by "
-           "block averaging (nan: too few samples), number: mean particle centres, mass_density kg/"
-        << measure << ", collision_rate 1/(s " << measure << "), collision_rate_per_particle 1/s, dissipation_rate W/"
-        << measure << ", momentum_rate N/" << measure << ", weight_* " << stress << "\n";
-    out << "y";
-    if (walls) out << ",y_over_H";
-    for (const char* part : {"collisional", "kinetic", "total"})
-      for (int a = 0; a < dim_; ++a)
-        for (int b = 0; b < dim_; ++b) out << ',' << part << '_' << component_name(a, b) << ',' << part << '_' << component_name(a, b) << "_error";
-    out << ",number,mass_density,collision_rate,collision_rate_per_particle,dissipation_rate";
-    for (int b = 0; b < dim_; ++b) out << ",momentum_rate_" << kAxisNames[b];
-    for (int b = 0; b < dim_; ++b) out << ",weight_y" << kAxisNames[b];
-    out << '\n';
-    const double lo = strips.empty() ? 0.0 : strips.front().lo, hi = strips.empty() ? 0.0 : strips.back().hi;
-    for (const auto& s : strips) {
-      const double y = 0.5 * (s.lo + s.hi);
-      out << y;
-      if (walls) out << ',' << (y - lo) / (hi - lo);
-      for (auto [value, error] : {std::pair{&s.collisional, &s.collisional_error}, std::pair{&s.kinetic, &s.kinetic_error},
-                                  std::pair{&s.total, &s.total_error}})
-        for (int a = 0; a < dim_; ++a)
-          for (int b = 0; b < dim_; ++b) out << ',' << (*value)[a * 3 + b] << ',' << (*error)[a * 3 + b];
-      out << ',' << s.number << ',' << s.mass_density << ',' << s.collision_rate << ',' << s.collision_rate_per_particle
-          << ',' << s.dissipation_rate;
-      for (int b = 0; b < dim_; ++b) out << ',' << s.momentum_rate[b];
-      for (int b = 0; b < dim_; ++b) out << ',' << s.weight_row[b];
-      out << '\n';
-    }
-  });
+  write_stress_file(path, strips, StressFileLayout{dim_, strips_.between_walls(), "collisional", true});
 }
 
 void CollisionStressObserver::write_walls(const std::string& path, const std::vector<WallLoad>& loads) const {
-  const char* stress = dim_ == 2 ? "N/m" : "Pa";
-  const char* area = dim_ == 2 ? "m" : "m^2";
-  io::write_atomically(path, [&](std::ostream& out) {
-    out << "# units: position m, area " << area << ", stresses " << stress
-        << " (the wall's row of P_ab: normal compressive positive, shear along the flow), impulse_angle_deg degrees, "
-           "collision_rate 1/(s "
-        << area << "), dissipation_rate W/" << area << "\n";
-    out << "wall,axis,position,area,collisions,normal_stress,normal_stress_error,shear_stress,shear_stress_error,"
-           "friction,impulse_angle_deg,rolling_normal_stress,rolling_shear_stress,collision_rate,dissipation_rate\n";
-    for (std::size_t w = 0; w < loads.size(); ++w) {
-      const auto& wall = frame_->walls[w];
-      const auto& l = loads[w];
-      out << kFaceNames[wall.face] << ',' << kAxisNames[wall.axis] << ',' << wall.at(frame_->time) << ','
-          << wall_area(static_cast<int>(w)) << ',' << l.collisions << ',' << l.normal_stress << ',' << l.normal_stress_error
-          << ',' << l.shear_stress << ',' << l.shear_stress_error << ',' << l.friction << ',' << l.impulse_angle_deg << ','
-          << l.rolling_normal_stress << ',' << l.rolling_shear_stress << ',' << l.collision_rate << ','
-          << l.dissipation_rate << '\n';
-    }
-  });
+  std::vector<double> areas;
+  for (std::size_t w = 0; w < loads.size(); ++w) areas.push_back(wall_area(static_cast<int>(w)));
+  write_wall_file(path, loads, frame_->walls, areas, frame_->time, dim_);
 }
 
 void CollisionStressObserver::write_angles(const std::string& path, double shear_parameter) const {

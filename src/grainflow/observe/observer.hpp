@@ -52,6 +52,11 @@ struct Frame {
   // event-driven particle rolling on it), with the force the wall exerts.
   using WallContactVisit = std::function<void(std::uint32_t, int, const Vec3&)>;
   std::function<void(const WallContactVisit&)> wall_contacts;
+  // Soft spheres: calls visit(i, wall, from, force) for each touching contact once, with the force
+  // on particle i and `from` the partner's centre (its image nearest i) or, for a wall (wall >= 0),
+  // the contact point on it.
+  using ContactForceVisit = std::function<void(std::uint32_t, int, const Vec3&, const Vec3&)>;
+  std::function<void(const ContactForceVisit&)> contact_forces;
 };
 
 // Where an observer writes at the end: files in `directory` (on rank 0 only: `writes`), keys of

@@ -206,6 +206,10 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
     read_portable_particles(*portable_restart, portable_particles, initial);
   }
 
+  // Refused before anything is written: the stress sums are not yet reduced over ranks.
+  if (ranks && c.output.stresses)
+    throw InputError(c.path, "output.stresses", "is measured on one MPI rank for now (threads are fine): run it "
+                                                "without mpirun, or set output.stresses = false");
   fs::create_directories(options.output_directory);
   dir = options.output_directory;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
@@ -242,6 +246,7 @@ template <class E>
 void DemRun::bind_frame(E& e) {
   frame = frame_of(e.state());
   frame.coordination = [&e] { return e.coordination(); };
+  frame.contact_forces = [&e](const observe::Frame::ContactForceVisit& visit) { e.for_each_contact_force(visit); };
 }
 
 template <class E>

@@ -4,6 +4,7 @@
 
 #include "grainflow/observe/collision_stress_observer.hpp"
 #include "grainflow/observe/constitutive_observer.hpp"
+#include "grainflow/observe/contact_stress_observer.hpp"
 #include "grainflow/observe/convection_observer.hpp"
 #include "grainflow/observe/state_trajectory_observer.hpp"
 #include "grainflow/observe/strip_profile_observer.hpp"
@@ -49,6 +50,10 @@ constexpr Registered kObservers[] = {
     {"tracers", EngineKind::dem, [](const CaseConfig& c) { return c.tracers.enabled; },
      [](const observe::RunContext& run, const observe::Frame& start, const std::vector<Made>&) -> Made {
        return std::make_unique<observe::TracerObserver>(run, *start.particles);
+     }},
+    {"stresses", EngineKind::dem, [](const CaseConfig& c) { return c.output.stresses; },
+     [](const observe::RunContext& run, const observe::Frame& start, const std::vector<Made>&) -> Made {
+       return std::make_unique<observe::ContactStressObserver>(run, start);
      }},
     {"profiles", EngineKind::dem, [](const CaseConfig&) { return true; },
      [](const observe::RunContext& run, const observe::Frame&, const std::vector<Made>&) -> Made {

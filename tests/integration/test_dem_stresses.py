@@ -1,0 +1,150 @@
+#!/usr/bin/python3
+"""Stresses and wall loads of soft-sphere runs from the command line (output.stresses = true:
+stresses.csv, walls.csv; OUTPUTS.md):
+
+- A bed of 200 frictional spheres (mu = 0.5 with each other and the floor) settled on a flat floor
+  under gravity tilted 10 degrees from the floor's normal, in reduced units (d = rho = g = 1), its
+  stresses averaged over the last 5 time units, when it is at rest (kinetic energy ~1e-12 of its
+  potential). At rest every particle's forces balance, so the force carried across a plane y by
+  the branch vectors crossing it is the weight of the particles whose centres lie above: each
+  strip's total P_yb equals -(1/(h A)) sum_i m_i g_b clamp(y_i - lo, 0, h) exactly, computed here
+  from final_state.csv. Bound 1e-6 of the bottom strip's P_yy: the residual motion (velocities
+  ~1e-8) and the force recomputed at full-step velocities leave ~1e-8. Hence P_yx / P_yy =
+  -tan(10 deg) at every depth; the floor carries N m g cos(theta) / A normally and -N m g
+  sin(theta) / A in shear (its friction -tan theta), to the same bound; the kinetic part vanishes.
+- The columns are the event-driven file's with the non-kinetic part named contact_*; the collision
+  rates are nan (a soft-sphere run has contacts, not collisions).
+- Without output.stresses no stresses.csv or walls.csv is written; the key is refused for edmd.
+
+Usage: /usr/bin/python3 tests/integration/test_dem_stresses.py PATH_TO_grainflow  (from the repo root)
+"""
+import json
+import math
+import os
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gftest import check, executable_from_argv, finish, read_csv, run, write_text  # noqa: E402
+
+ANGLE = math.radians(10.0)
+WIDTH = 6.0  # the box is WIDTH x 30 x WIDTH, periodic in x and z
+COUNT = 200
+
+BED = f"""
+[engine]
+kind = "dem"
+dimension = 3
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [{WIDTH}, 30.0, {WIDTH}]
+boundary = {{ x = "periodic", y = ["wall", "open"], z = "periodic" }}
+[gravity]
+vector = [{math.sin(ANGLE)!r}, {-math.cos(ANGLE)!r}, 0.0]
+[[species]]
+name = "grain"
+diameter = 1.0
+density = 1.0
+count = {COUNT}
+[particles]
+init = "random"
+region_lo = [0.0, 0.0, 0.0]
+region_hi = [{WIDTH}, 20.0, {WIDTH}]
+seed = 3
+[contact]
+model = "linear_dashpot"
+kn = 2.0e5
+gamma_n = 300.0
+friction = 0.5
+[walls.ylo]
+friction = 0.5
+[run]
+duration = 40.0
+time_step = 1.0e-4
+[output]
+interval = 1.0
+average_start = 35.0
+profile_interval = 0.05
+stresses = true
+"""
+
+
+def value(row, key):
+    return float(row[key])
+
+
+def check_bed_at_rest(exe, tmp):
+    case = os.path.join(tmp, "bed.toml")
+    write_text(case, BED)
+    out = os.path.join(tmp, "bed")
+    status, _, err = run(exe, "run", case, "-o", out, "--quiet")
+    if not check(status == 0, f"bed: exited {status}: {err.strip()}"):
+        return
+    with open(os.path.join(out, "summary.json")) as f:
+        summary = json.load(f)
+    check(summary["errors"] == [] and summary["warnings"] == [], f"bed: {summary['errors']} {summary['warnings']}")
+    strips = read_csv(os.path.join(out, "stresses.csv"))
+    walls = read_csv(os.path.join(out, "walls.csv"))
+    particles = read_csv(os.path.join(out, "final_state.csv"))
+    columns = ["y"] + [f"{part}_{a}{b}{suffix}" for part in ("contact", "kinetic", "total")
+                       for a in "xyz" for b in "xyz" for suffix in ("", "_error")]
+    columns += ["number", "mass_density", "collision_rate", "collision_rate_per_particle", "dissipation_rate",
+                "momentum_rate_x", "momentum_rate_y", "momentum_rate_z", "weight_yx", "weight_yy", "weight_yz"]
+    check(list(strips[0].keys()) == columns, f"bed: stresses.csv columns {list(strips[0].keys())}")
+    check(math.isnan(value(strips[0], "collision_rate")), "bed: a soft-sphere run's collision_rate is not nan")
+    check(summary["stress_samples"] == 100, f"bed: {summary['stress_samples']} stress samples, expected 100")
+
+    mass = math.pi / 6.0
+    g = (math.sin(ANGLE), -math.cos(ANGLE))
+    area = WIDTH * WIDTH
+    bottom = None
+    for s in strips:
+        lo = value(s, "y") - 0.5
+        share = sum(mass * min(max(float(p["y"]) - lo, 0.0), 1.0) for p in particles) / area
+        expected_yy, expected_yx = -share * g[1], -share * g[0]
+        if bottom is None:
+            bottom = expected_yy
+        bound = 1e-6 * bottom
+        check(abs(value(s, "total_yy") - expected_yy) < bound,
+              f"bed: strip y = {s['y']}: P_yy {s['total_yy']}, weight above {expected_yy:.10g}")
+        check(abs(value(s, "total_yx") - expected_yx) < bound,
+              f"bed: strip y = {s['y']}: P_yx {s['total_yx']}, downslope weight above {expected_yx:.10g}")
+        check(abs(value(s, "kinetic_yy")) < bound, f"bed: strip y = {s['y']}: kinetic P_yy {s['kinetic_yy']} at rest")
+        if expected_yy > 0.1 * bottom:  # the ratio where the stresses are well above the bound
+            ratio = value(s, "total_yx") / value(s, "total_yy")
+            check(abs(ratio + math.tan(ANGLE)) < 1e-5, f"bed: strip y = {s['y']}: P_yx/P_yy {ratio}, -tan 10 deg")
+    floor = walls[0]
+    check(floor["wall"] == "ylo", f"bed: walls.csv lists {floor['wall']}")
+    weight = COUNT * mass / area
+    check(abs(value(floor, "normal_stress") / (weight * math.cos(ANGLE)) - 1.0) < 1e-6,
+          f"bed: floor normal stress {floor['normal_stress']}, weight {weight * math.cos(ANGLE):.10g}")
+    check(abs(value(floor, "shear_stress") / (-weight * math.sin(ANGLE)) - 1.0) < 1e-6,
+          f"bed: floor shear stress {floor['shear_stress']}, downslope weight {-weight * math.sin(ANGLE):.10g}")
+    check(abs(value(floor, "friction") + math.tan(ANGLE)) < 1e-6, f"bed: floor friction {floor['friction']}")
+    check(abs(summary["wall_normal_stress_ylo"] / value(floor, "normal_stress") - 1.0) < 1e-8,
+          "bed: summary wall_normal_stress_ylo differs from walls.csv")
+
+
+def check_switch(exe, tmp):
+    out = os.path.join(tmp, "off")
+    status, _, err = run(exe, "run", "cases/demo/vibrated_bed.toml", "-o", out, "--quiet", "--set", "run.duration=0.01")
+    if check(status == 0, f"off: exited {status}: {err.strip()}"):
+        for name in ("stresses.csv", "walls.csv"):
+            check(not os.path.exists(os.path.join(out, name)), f"off: {name} written")
+    status, _, err = run(exe, "run", "cases/campbell1982/couette_noslip.toml", "-o", os.path.join(tmp, "edmd"),
+                         "--quiet", "--set", "output.stresses=true")
+    check(status == 2 and "output.stresses" in err and "collision_stresses" in err, f"edmd: exited {status}: {err.strip()}")
+
+
+def main():
+    exe = executable_from_argv("usage: test_dem_stresses.py PATH_TO_grainflow")
+    if exe is None:
+        return 2
+    with tempfile.TemporaryDirectory() as tmp:
+        check_bed_at_rest(exe, tmp)
+        check_switch(exe, tmp)
+    return finish("test_dem_stresses")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
