@@ -260,17 +260,9 @@ class DemEngine {
         if (p.motion[i] != Motion::free && p.motion[j] != Motion::free) continue;
         const Vec3 xj = p.position[j] + shifts[pairs_.shift[k]];
         const Vec3 d = p.position[i] - xj;
-        const double r = norm(d), ri = p.radius[i], rj = p.radius[j];
-        if (!(r < ri + rj) || r == 0.0) continue;
-        ContactKinematics c;
-        c.normal = d * (1.0 / r);
-        c.overlap = ri + rj - r;
-        const Vec3 relative = p.velocity[i] - p.velocity[j];
-        c.normal_velocity = dot(relative, c.normal);
-        c.slip_velocity = relative - c.normal_velocity * c.normal -
-                          cross(ri * p.angular_velocity[i] + rj * p.angular_velocity[j], c.normal);
-        c.effective_mass = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
-        c.effective_radius = ri * rj / (ri + rj);
+        const double r = norm(d);
+        if (!(r < p.radius[i] + p.radius[j]) || r == 0.0) continue;
+        const ContactKinematics c = pair_kinematics(i, j, d, r);
         const int bump_face = std::max(p.wall[i], p.wall[j]);
         State memory = contacts_.pair_state[k];
         const ContactForce f = Law::force(bump_face < 0 ? pair_params_ : bump_params_[bump_face], memory, c, 0.0);
@@ -283,17 +275,9 @@ class DemEngine {
       normal[wall.axis] = wall.inward;
       for (std::size_t i = 0; i < p.size(); ++i) {
         if (!contacts_.wall_touching[w][i] || p.motion[i] != Motion::free || p.ghost[i]) continue;
-        const double ri = p.radius[i];
         const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
-        if (!(gap < ri)) continue;
-        ContactKinematics c;
-        c.normal = normal;
-        c.overlap = ri - gap;
-        const Vec3 relative = p.velocity[i] - wall.velocity;
-        c.normal_velocity = dot(relative, normal);
-        c.slip_velocity = relative - c.normal_velocity * normal - cross(ri * p.angular_velocity[i], normal);
-        c.effective_mass = p.mass[i];
-        c.effective_radius = ri;
+        if (!(gap < p.radius[i])) continue;
+        const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
         State memory = contacts_.wall_state[w][i];
         const ContactForce f = Law::force(wall_params_[w], memory, c, 0.0);
         Vec3 contact = p.position[i];
@@ -307,6 +291,37 @@ class DemEngine {
   Vec3 unwrapped_position(std::size_t i) const { return s_.box.unwrapped(s_.particles.position[i], s_.particles.image[i]); }
 
  private:
+  // The kinematics of the touching pair i, j: d = x_i - x_j (j's image nearest i), r = |d|; velocities
+  // as they are now (half-step inside a step).
+  ContactKinematics pair_kinematics(std::size_t i, std::size_t j, const Vec3& d, double r) const {
+    const ParticleStore& p = s_.particles;
+    const double ri = p.radius[i], rj = p.radius[j];
+    ContactKinematics c;
+    c.normal = d * (1.0 / r);
+    c.overlap = ri + rj - r;
+    const Vec3 relative = p.velocity[i] - p.velocity[j];
+    c.normal_velocity = dot(relative, c.normal);
+    c.slip_velocity = relative - c.normal_velocity * c.normal -
+                      cross(ri * p.angular_velocity[i] + rj * p.angular_velocity[j], c.normal);
+    c.effective_mass = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
+    c.effective_radius = ri * rj / (ri + rj);  // a law that does not read it leaves it to the optimiser
+    return c;
+  }
+  // Particle i touching `wall` (unit `normal` into the box) with its centre `gap` from it.
+  ContactKinematics wall_kinematics(std::size_t i, const FlatWall& wall, const Vec3& normal, double gap) const {
+    const ParticleStore& p = s_.particles;
+    const double ri = p.radius[i];
+    ContactKinematics c;
+    c.normal = normal;
+    c.overlap = ri - gap;
+    const Vec3 relative = p.velocity[i] - wall.velocity;
+    c.normal_velocity = dot(relative, normal);
+    c.slip_velocity = relative - c.normal_velocity * normal - cross(ri * p.angular_velocity[i], normal);
+    c.effective_mass = p.mass[i];
+    c.effective_radius = ri;
+    return c;
+  }
+
   // With `measure`, returns the contact forces' power on the kicked velocities (contact_power()).
   double half_kick(bool measure = false) {
     ParticleStore& p = s_.particles;
@@ -514,16 +529,7 @@ class DemEngine {
             contacts_.pair_state[k] = State{};
             begun += counted;
           }
-          const double r = std::sqrt(r2);
-          ContactKinematics c;
-          c.normal = d * (1.0 / r);
-          c.overlap = sum - r;
-          const Vec3 relative = p.velocity[i] - p.velocity[j];
-          c.normal_velocity = dot(relative, c.normal);
-          c.slip_velocity = relative - c.normal_velocity * c.normal -
-                            cross(ri * p.angular_velocity[i] + rj * p.angular_velocity[j], c.normal);
-          c.effective_mass = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
-          c.effective_radius = ri * rj / sum;  // a law that does not read it leaves it to the optimiser
+          const ContactKinematics c = pair_kinematics(i, j, d, std::sqrt(r2));
           const int bump_face = std::max(p.wall[i], p.wall[j]);  // -1 unless one is a wall bump
           const Params& params = bump_face < 0 ? pair_params_ : bump_params_[bump_face];
           const ContactForce f = Law::force(params, contacts_.pair_state[k], c, dt);
@@ -595,14 +601,7 @@ class DemEngine {
           states[i] = State{};
           ++begun;
         }
-        ContactKinematics c;
-        c.normal = normal;
-        c.overlap = ri - gap;
-        const Vec3 relative = p.velocity[i] - wall.velocity;
-        c.normal_velocity = dot(relative, normal);
-        c.slip_velocity = relative - c.normal_velocity * normal - cross(ri * p.angular_velocity[i], normal);
-        c.effective_mass = p.mass[i];
-        c.effective_radius = ri;
+        const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
         const ContactForce f = Law::force(params, states[i], c, dt);
         const Vec3 total = f.normal * normal + f.tangential;
         p.force[i] += total;

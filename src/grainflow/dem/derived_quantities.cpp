@@ -72,7 +72,8 @@ DerivedQuantities derive(const CaseConfig& c) {
   d.reference_mass = lightest;
   d.reference_diameter = ref.diameter;
 
-  d.impact_speed = characteristic_impact_speed(c, ref.diameter, floor_peak_speed(c));
+  const double floor_speed = floor_peak_speed(c);
+  d.impact_speed = characteristic_impact_speed(c, ref.diameter, floor_speed);
   visit_contact_law(c.contact.model, [&]<ContactLaw Law>() {
     const typename Law::Params p = Law::pair_params(c.contact, ref);
     const HeadOnImpact pair{0.5 * d.reference_mass, 0.25 * ref.diameter, d.impact_speed};
@@ -112,7 +113,7 @@ DerivedQuantities derive(const CaseConfig& c) {
       const double v0 = c.drive.amplitude[axis] * 2.0 * M_PI * c.drive.frequency[axis];
       mean_sq += 0.5 * v0 * v0;
     }
-    d.floor_peak_speed = floor_peak_speed(c);
+    d.floor_peak_speed = floor_speed;
     const double mean_diameter_g = ref.diameter * (d.gravity_magnitude > 0.0 ? d.gravity_magnitude : 9.81);
     d.boundary_fluctuation_velocity = std::sqrt(mean_sq / 3.0) / std::sqrt(mean_diameter_g);
     const int g = d.gravity_axis;

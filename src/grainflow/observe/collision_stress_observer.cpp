@@ -90,11 +90,7 @@ double CollisionStressObserver::shear_parameter(const std::vector<StripStress>& 
 }
 
 std::vector<StripStress> CollisionStressObserver::strip_stresses() const {
-  const std::vector<WallLoad> loads = walls_.averages();
-  Vec3 top_row;  // P_y. at the top of the strips: the top wall's, or zero at a free surface
-  for (std::size_t w = 0; w < loads.size(); ++w)
-    if (strips_.between_walls() && frame_->walls[w].face == 3) top_row = loads[w].row;
-  return stress_.averages(c_.gravity, top_row);
+  return stress_.averages(c_.gravity, top_wall_row(walls_.averages(), frame_->walls, strips_.between_walls()));
 }
 
 void CollisionStressObserver::write(const Frame& last, OutputSink& out) {
@@ -112,16 +108,7 @@ void CollisionStressObserver::write(const Frame& last, OutputSink& out) {
   write_walls(dir + "/walls.csv", loads);
   write_angles(dir + "/collision_angles.csv", s);
 
-  summary.integer("stress_samples", stress_.samples());
-  summary.number("stress_averaging_time", stress_.elapsed());
-  for (std::size_t w = 0; w < loads.size(); ++w) {
-    const std::string face = kFaceNames[frame_->walls[w].face];
-    summary.number("wall_normal_stress_" + face, loads[w].normal_stress);
-    summary.number("wall_normal_stress_error_" + face, loads[w].normal_stress_error);
-    summary.number("wall_shear_stress_" + face, loads[w].shear_stress);
-    summary.number("wall_shear_stress_error_" + face, loads[w].shear_stress_error);
-    summary.number("wall_friction_" + face, loads[w].friction);
-  }
+  add_stress_summary(summary, stress_, loads, frame_->walls);
   summary.number("savage_jeffrey_S", s);
 }
 

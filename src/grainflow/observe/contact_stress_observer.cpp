@@ -42,11 +42,7 @@ void ContactStressObserver::sample(const Frame& now) {
 }
 
 std::vector<StripStress> ContactStressObserver::strip_stresses() const {
-  const std::vector<WallLoad> loads = walls_.averages();
-  Vec3 top_row;  // P_y. at the top of the strips: the top wall's, or zero at a free surface
-  for (std::size_t w = 0; w < loads.size(); ++w)
-    if (strips_.between_walls() && frame_->walls[w].face == 3) top_row = loads[w].row;
-  return stress_.averages(c_.gravity, top_row);
+  return stress_.averages(c_.gravity, top_wall_row(walls_.averages(), frame_->walls, strips_.between_walls()));
 }
 
 void ContactStressObserver::write(const Frame& last, OutputSink& out) {
@@ -62,17 +58,7 @@ void ContactStressObserver::write(const Frame& last, OutputSink& out) {
     for (const auto& w : last.walls) areas.push_back(wall_area(*last.box, w.axis, dim));
     write_wall_file(out.directory + "/walls.csv", loads, last.walls, areas, last.time, dim);
   }
-  io::JsonObject& summary = *out.summary;
-  summary.integer("stress_samples", stress_.samples());
-  summary.number("stress_averaging_time", stress_.elapsed());
-  for (std::size_t w = 0; w < loads.size(); ++w) {
-    const std::string face = kFaceNames[last.walls[w].face];
-    summary.number("wall_normal_stress_" + face, loads[w].normal_stress);
-    summary.number("wall_normal_stress_error_" + face, loads[w].normal_stress_error);
-    summary.number("wall_shear_stress_" + face, loads[w].shear_stress);
-    summary.number("wall_shear_stress_error_" + face, loads[w].shear_stress_error);
-    summary.number("wall_friction_" + face, loads[w].friction);
-  }
+  add_stress_summary(*out.summary, stress_, loads, last.walls);
 }
 
 }  // namespace grainflow::observe

@@ -78,4 +78,24 @@ void write_wall_file(const std::string& path, const std::vector<WallLoad>& loads
   });
 }
 
+Vec3 top_wall_row(const std::vector<WallLoad>& loads, const FaceWalls& walls, bool between_walls) {
+  for (std::size_t w = 0; w < loads.size(); ++w)
+    if (between_walls && walls[w].face == 3) return loads[w].row;
+  return {};
+}
+
+void add_stress_summary(io::JsonObject& summary, const StressProfile& stress, const std::vector<WallLoad>& loads,
+                        const FaceWalls& walls) {
+  summary.integer("stress_samples", stress.samples());
+  summary.number("stress_averaging_time", stress.elapsed());
+  for (std::size_t w = 0; w < loads.size(); ++w) {
+    const std::string face = kFaceNames[walls[w].face];
+    summary.number("wall_normal_stress_" + face, loads[w].normal_stress);
+    summary.number("wall_normal_stress_error_" + face, loads[w].normal_stress_error);
+    summary.number("wall_shear_stress_" + face, loads[w].shear_stress);
+    summary.number("wall_shear_stress_error_" + face, loads[w].shear_stress_error);
+    summary.number("wall_friction_" + face, loads[w].friction);
+  }
+}
+
 }  // namespace grainflow::observe
