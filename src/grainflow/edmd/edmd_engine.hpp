@@ -6,7 +6,7 @@
 // per-particle neighbour lists rebuilt when a particle has moved a shell from where its list was
 // built (neighbor_lists.hpp); elsewhere in the 27 cells, at least a diameter wide, around
 // the particle, with cell-crossing events. Dimension 2 (discs in the x-y plane) or 3 is a template
-// parameter.
+// parameter; the entry points are compiled once, in edmd_engine.cpp.
 #pragma once
 
 #include <algorithm>
@@ -48,28 +48,7 @@ class EdmdEngine {
   EdmdEngine& operator=(const EdmdEngine&) = delete;
 
   // `neighbor_lists` = false keeps the cell search where the list path would apply (for tests).
-  explicit EdmdEngine(EdmdState state, bool neighbor_lists = true) : s_(std::move(state)) {
-    const ParticleStore& p = s_.particles;
-    const std::size_t n = p.size();
-    tc_.reset(n, s_.contact_duration);
-    event_.assign(n, Event{});
-    event_time_.assign(n, kNever);
-    for (double r : p.radius) max_diameter_ = std::max(max_diameter_, 2.0 * r);
-    const bool one_size = std::all_of(p.radius.begin(), p.radius.end(), [&](double r) { return r == p.radius.front(); });
-    uniform_radius_ = one_size && n > 0 ? p.radius.front() : 0.0;
-    load_flights();
-    stall_.start(s_.time);
-    servo_ = CouetteServo(s_);
-    images_.shear_velocity = s_.lees_edwards_rate * s_.box.length(1);
-    use_lists_ = neighbor_lists && lists_apply();
-    build_grid();
-    sort_by_cell();
-    if (use_lists_) lists_.build(s_.box, grid_, flight_, s_.particles.radius);
-    for (std::size_t i = 0; i < n; ++i) predict(static_cast<std::uint32_t>(i));
-    queue_.reset(n, &event_time_);
-    counters_.start_energy = observe::mechanical_energy(p, s_.box, s_.gravity);
-    counters_.start_periodic_potential = observe::periodic_potential(p, s_.box, s_.gravity);
-  }
+  explicit EdmdEngine(EdmdState state, bool neighbor_lists = true);
 
   // The energy budget since the start (observe/energy_budget.hpp). Particles must be current (after
   // advance_to). Collisions' losses are measured in the frame of the wall or image met, so the
@@ -125,30 +104,10 @@ class EdmdEngine {
   }
 
   // Processes every event up to time `t_end`, then brings all particles to `t_end`.
-  void advance_to(double t_end) {
-    const std::size_t n = s_.particles.size();
-    if (n == 0) {
-      s_.time = t_end;
-      return;
-    }
-    while (true) {
-      const std::uint32_t i = queue_.top();
-      const double t = queue_.top_time();  // = event_time_[i], from the heap's own line
-      if (!(t <= t_end)) break;
-      s_.time = t;
-      check_progress(i);
-      update_width();
-      process(i);
-      if (s_.servo.enabled && servo_.due(s_, counters_.collisions)) servo_update();
-    }
-    synchronize(t_end);
-  }
+  void advance_to(double t_end);
 
   // The stall detector (stall_detector.hpp) sees every event.
-  void check_progress(std::uint32_t i) {
-    const std::size_t n = s_.particles.size();
-    if (stall_.stalled(n, s_.time)) report_stall(i, StallDetector::window(n), stall_.moved());
-  }
+  void check_progress(std::uint32_t i);
 
   // The stalled clock's message (fault_checks.hpp): the last event's particles and those that
   // collided within the window, found by one pass over the last collision times.
@@ -171,29 +130,10 @@ class EdmdEngine {
 
   // Brings every particle to time t (no event may lie before t) and copies positions and velocities
   // back into the particle store, where outputs read them.
-  void synchronize(double t) {
-    s_.time = t;
-    update_width();
-    ParticleStore& p = s_.particles;
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      advance(static_cast<std::uint32_t>(i), t);
-      // On the list path particles are wrapped only when their lists are rebuilt: the copy the
-      // outputs read must lie in the box (list centres and pair images do not depend on it).
-      if (use_lists_) s_.box.wrap(flight_[i].x, p.image[i]);
-      p.position[i] = flight_[i].x;
-      p.velocity[i] = flight_[i].v;
-    }
-    if (s_.servo.enabled) servo_.observe(s_, t);
-  }
+  void synchronize(double t);
 
   // Re-schedules every particle (after walls changed their motion).
-  void repredict_all() {
-    for (std::size_t i = 0; i < s_.particles.size(); ++i) {
-      advance(static_cast<std::uint32_t>(i), s_.time);
-      predict(static_cast<std::uint32_t>(i));
-      queue_.update(static_cast<std::uint32_t>(i));
-    }
-  }
+  void repredict_all();
 
  private:
   enum class Kind : std::uint8_t { none, pair, wall, cell, expiry };
