@@ -155,6 +155,34 @@ TEST(CaseLoader, RestitutionMustLieInZeroToOne) {
   EXPECT_NO_THROW(load_case_from_string(replace(kMinimal, "restitution = 0.9", "restitution = 1.0"), kLabel));
 }
 
+TEST(CaseLoader, RollingResistanceKeysAreChecked) {
+  const std::string with = replace(kMinimal, "friction = 0.5\n", "friction = 0.5\nrolling_friction = 0.1\n");
+  const CaseConfig c = load_case_from_string(with, kLabel);
+  EXPECT_EQ(c.contact.rolling_model, "epsd");  // the default model once mu_r is given
+  EXPECT_EQ(c.contact.rolling_damping, 0.3);
+  EXPECT_EQ(c.contact.rolling_stiffness, 2.25);
+  EXPECT_EQ(load_case_from_string(kMinimal, kLabel).contact.rolling_model, "none");
+  for (const char* bad : {"-0.1", "1.5"})
+    expect_input_error(replace(kMinimal, "friction = 0.5\n", std::string("friction = 0.5\nrolling_friction = ") + bad + "\n"),
+                       "contact.rolling_friction", "[0, 1]");
+  expect_input_error(replace(kMinimal, "friction = 0.5\n", "friction = 0.5\nrolling_model = \"epsd\"\n"),
+                     "contact.rolling_model", "needs rolling_friction");
+  expect_input_error(replace(with, "rolling_friction = 0.1\n", "rolling_friction = 0.1\nrolling_model = \"cdt\"\n"),
+                     "contact.rolling_model", "must be");
+  expect_input_error(replace(with, "rolling_friction = 0.1\n",
+                             "rolling_friction = 0.1\nrolling_model = \"constant_torque\"\nrolling_damping = 0.2\n"),
+                     "contact.rolling_damping", "epsd");
+  expect_input_error(replace(with, "rolling_friction = 0.1\n", "rolling_friction = 0.1\nrolling_damping = 1.5\n"),
+                     "contact.rolling_damping", "[0, 1]");
+  expect_input_error(replace(with, "rolling_friction = 0.1\n", "rolling_friction = 0.1\nrolling_stiffness = 0.0\n"),
+                     "contact.rolling_stiffness", "positive");
+  // A wall's own mu_r, only where the particles have a model.
+  EXPECT_EQ(load_case_from_string(replace(with, "friction = 0.3\n", "friction = 0.3\nrolling_friction = 0.2\n"), kLabel)
+                .walls[2].rolling_friction, 0.2);
+  expect_input_error(replace(kMinimal, "friction = 0.3\n", "friction = 0.3\nrolling_friction = 0.2\n"),
+                     "walls.ylo.rolling_friction", "contact.rolling_friction");
+}
+
 TEST(CaseLoader, NonPositiveMaterialPropertiesAreErrors) {
   for (const char* bad : {"0.0", "-0.003"}) {
     expect_input_error(replace(kMinimal, "diameter = 0.003", std::string("diameter = ") + bad), "species.0.diameter",

@@ -70,6 +70,12 @@ struct ContactConfig {
   bool operator==(const ContactConfig&) const = default;  // the case writer's round-trip test
   std::string model;             // a registered law (dem/contact_law_registry.hpp); absent: the first
   double friction = 0.0;         // Coulomb coefficient mu between particles, for every law
+  // Rolling resistance, for every law (dem/rolling_resistance.hpp): "none" without rolling_friction,
+  // else constant_torque | epsd (the default).
+  std::string rolling_model = "none";
+  double rolling_friction = 0.0;   // mu_r: the torque's cap is mu_r R* F_n
+  double rolling_damping = 0.3;    // eta_r, epsd: the dashpot's fraction of critical (Ai et al. 2011)
+  double rolling_stiffness = 2.25; // c_k, epsd: k_r = c_k k_n mu_r^2 R*^2 (Iwashita & Oda, 3D)
   ContactParameters parameters;  // the law's own keys, as its file reads them
 };
 
@@ -111,6 +117,7 @@ struct WallConfig {
   bool operator==(const WallConfig&) const = default;  // the case writer's round-trip test
   double restitution = -1.0;  // edmd walls; < 0: collision.wall_restitution
   double friction = -1.0;     // < 0: the particles' value (also for the bumps)
+  double rolling_friction = -1.0;  // dem, mu_r; < 0: the particles' value (also for the bumps)
   ContactParameters contact;  // dem walls: the contact law's own wall keys (also for the bumps)
   std::string condition = "smooth";  // edmd walls: smooth | rough | no_slip (Campbell's Couette walls)
   Vec3 velocity;              // m/s, constant velocity of the wall (a drive adds to it)

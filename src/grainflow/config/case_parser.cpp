@@ -185,6 +185,25 @@ void read_particles(TomlReader& top, CaseConfig& c) {
   r.reject_unknown_keys();
 }
 
+// [contact]'s rolling resistance, for every law.
+void read_rolling_resistance(TomlReader& r, ContactConfig& k) {
+  k.rolling_friction = r.number("rolling_friction", 0.0);
+  if (!(k.rolling_friction >= 0.0 && k.rolling_friction <= 1.0))
+    r.fail("rolling_friction", "must lie in [0, 1] (the torque's lever arm is mu_r R*)");
+  const bool rolling = k.rolling_friction > 0.0;
+  k.rolling_model = r.string("rolling_model", rolling ? "epsd" : "none");
+  if (k.rolling_model != "none" && k.rolling_model != "constant_torque" && k.rolling_model != "epsd")
+    r.fail("rolling_model", "must be \"none\", \"constant_torque\" or \"epsd\"");
+  if (rolling && k.rolling_model == "none") r.fail("rolling_model", "is \"none\" but rolling_friction is given");
+  if (!rolling && k.rolling_model != "none") r.fail("rolling_model", "needs rolling_friction > 0");
+  for (const char* key : {"rolling_damping", "rolling_stiffness"})
+    if (r.has(key) && k.rolling_model != "epsd") r.fail(key, "belongs to rolling_model = \"epsd\"");
+  k.rolling_damping = r.number("rolling_damping", k.rolling_damping);
+  if (!(k.rolling_damping >= 0.0 && k.rolling_damping <= 1.0)) r.fail("rolling_damping", "must lie in [0, 1] (1 is critical)");
+  k.rolling_stiffness = r.number("rolling_stiffness", k.rolling_stiffness);
+  if (!(k.rolling_stiffness > 0.0)) r.fail("rolling_stiffness", "must be positive");
+}
+
 // [contact] (DEM): the law by its schema
 void read_contact(TomlReader& top, CaseConfig& c, ContactSchemas schemas) {
   if (c.engine.kind == "dem") {
@@ -196,6 +215,7 @@ void read_contact(TomlReader& top, CaseConfig& c, ContactSchemas schemas) {
     if (!law) r.fail("model", "unknown contact model '" + k.model + "' (valid: " + schema_names(schemas) + ")");
     k.friction = r.number("friction", 0.0);
     if (k.friction < 0.0) r.fail("friction", "must not be negative");
+    read_rolling_resistance(r, k);
     reject_other_laws_keys(r, schemas, *law, &ContactSchema::keys);
     law->read(r, k.parameters);
     r.reject_unknown_keys();
@@ -270,6 +290,12 @@ void read_walls(TomlReader& top, CaseConfig& c, ContactSchemas schemas) {
     }
     w.friction = r.number("friction", -1.0);
     if (r.has("friction") && w.friction < 0.0) r.fail("friction", "must not be negative");
+    w.rolling_friction = r.number("rolling_friction", -1.0);
+    if (r.has("rolling_friction")) {
+      if (edmd) r.fail("rolling_friction", "is for the DEM engine (contact.rolling_friction)");
+      if (!(w.rolling_friction >= 0.0 && w.rolling_friction <= 1.0)) r.fail("rolling_friction", "must lie in [0, 1]");
+      if (c.contact.rolling_model == "none") r.fail("rolling_friction", "needs contact.rolling_friction > 0 (the model)");
+    }
     w.velocity = r.vec3("velocity", {});
     w.bump_diameter = r.number("bump_diameter", 0.0);
     if (r.has("bump_diameter") && !(w.bump_diameter > 0.0)) r.fail("bump_diameter", "must be positive");

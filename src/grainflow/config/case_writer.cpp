@@ -109,6 +109,14 @@ void write_contact(Out& o, const ContactConfig& k) {
   o.table("contact");
   o.text_key("model", k.model);
   o.key("friction", k.friction);
+  if (k.rolling_model != "none") {
+    o.text_key("rolling_model", k.rolling_model);
+    o.key("rolling_friction", k.rolling_friction);
+    if (k.rolling_model == "epsd") {
+      o.key("rolling_damping", k.rolling_damping);
+      o.key("rolling_stiffness", k.rolling_stiffness);
+    }
+  }
   for (const auto& [key, value] : k.parameters.entries()) o.key(key, value);
 }
 
@@ -137,6 +145,7 @@ void write_walls(Out& o, const CaseConfig& c) {
     if (edmd && w.restitution >= 0.0) o.key("restitution", w.restitution);
     for (const auto& [key, value] : w.contact.entries()) o.key(key, value);
     if (w.friction >= 0.0) o.key("friction", w.friction);
+    if (!edmd && w.rolling_friction >= 0.0) o.key("rolling_friction", w.rolling_friction);
     o.key("velocity", vec(w.velocity));
     if (kind == FaceKind::bumpy) {
       if (w.bump_diameter > 0.0) o.key("bump_diameter", w.bump_diameter);

@@ -1,6 +1,7 @@
 // The contact laws a case may choose (contact.model). Adding a law: its own file (a type that
-// satisfies ContactLaw, contact_law.hpp) and one entry in RegisteredContactLaws; the case loader,
-// writer, `check`, `theory`, `calibrate`, the engine variant and the typed law tests follow.
+// satisfies ContactLaw, contact_law.hpp, whose .cpp instantiates DemEngine for it) and one entry in
+// RegisteredContactLaws; the case loader, writer, `check`, `theory`, `calibrate`, the engine
+// variant and the typed law tests follow.
 #pragma once
 
 #include <stdexcept>

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "grainflow/dem/contact_law_registry.hpp"
+#include "grainflow/dem/rolling_resistance.hpp"
 
 namespace grainflow::dem {
 
@@ -92,6 +93,10 @@ DerivedQuantities derive(const CaseConfig& c) {
   if (c.run.time_step > 0.0) {
     d.time_step = c.run.time_step;
     d.time_step_from_case = true;
+  }
+  if (c.contact.rolling_model != "none") {
+    const RollingParams rolling = rolling_params(c.contact, c.contact.rolling_friction, d.normal_stiffness);
+    for (auto& line : describe_rolling(rolling, d.reference_mass, 0.5 * ref.diameter, d.time_step)) d.law_lines.push_back(line);
   }
   d.steps_per_contact = d.contact_duration > 0.0 ? d.contact_duration / d.time_step : 0.0;
   // n of eq. (2-5-4) for the step in use: n = pi e sqrt(m / 2K1) / dt.

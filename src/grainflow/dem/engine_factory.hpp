@@ -1,5 +1,6 @@
-// The soft-sphere engine for a case: one DemEngine<Law> per registered contact law in a variant,
-// so the time loop is compiled once per law and the force loop inlines the law.
+// The soft-sphere engine for a case: one DemEngine<Law> per registered contact law, without and
+// with rolling resistance, in a variant, so the time loop is compiled once per law and the force
+// loop inlines the law.
 #pragma once
 
 #include <variant>
@@ -15,7 +16,7 @@ template <class List>
 struct EngineVariantOf;
 template <ContactLaw... Laws>
 struct EngineVariantOf<ContactLawList<Laws...>> {
-  using type = std::variant<DemEngine<Laws>...>;
+  using type = std::variant<DemEngine<Laws, false>..., DemEngine<Laws, true>...>;
 };
 using DemEngineVariant = EngineVariantOf<RegisteredContactLaws>::type;
 

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "grainflow/config/toml_reader.hpp"
+#include "grainflow/dem/dem_engine_impl.hpp"
 
 namespace grainflow::dem {
 namespace {
@@ -204,5 +205,10 @@ std::vector<CheckLine> HertzMindlin::describe(const Params& p, const HeadOnImpac
           {"Rayleigh time", fmt::format("{:.6g} s  (time step bound {:.3g} of it)", rayleigh_time(p, impact),
                                         kRayleighFraction)}};
 }
+
+// The engine's time loop for this law, without and with rolling resistance, compiled here once
+// (dem_engine_impl.hpp).
+template class DemEngine<HertzMindlin, false>;
+template class DemEngine<HertzMindlin, true>;
 
 }  // namespace grainflow::dem

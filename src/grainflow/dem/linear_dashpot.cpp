@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "grainflow/config/toml_reader.hpp"
+#include "grainflow/dem/dem_engine_impl.hpp"
 
 namespace grainflow::dem {
 
@@ -66,5 +67,10 @@ std::vector<CheckLine> LinearDashpot::describe(const Params& p, const HeadOnImpa
           {"gamma_n, gamma_t", fmt::format("{:.6g}, {:.6g} 1/s", p.gamma_n, p.gamma_t)},
           {"e (binary, closed form)", fmt::format("{:.6g}", binary_contact(p, impact).restitution)}};
 }
+
+// The engine's time loop for this law, without and with rolling resistance, compiled here once
+// (dem_engine_impl.hpp).
+template class DemEngine<LinearDashpot, false>;
+template class DemEngine<LinearDashpot, true>;
 
 }  // namespace grainflow::dem

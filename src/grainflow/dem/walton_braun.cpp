@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "grainflow/config/toml_reader.hpp"
+#include "grainflow/dem/dem_engine_impl.hpp"
 
 namespace grainflow::dem {
 
@@ -64,5 +65,10 @@ std::vector<CheckLine> WaltonBraun::describe(const Params& p, const HeadOnImpact
           {"e = sqrt(K1/K2)", fmt::format("{:.6g}", p.restitution)},
           {"K0 = ratk K1 (tangential)", fmt::format("{:.6g} N/m", p.k0)}};
 }
+
+// The engine's time loop for this law, without and with rolling resistance, compiled here once
+// (dem_engine_impl.hpp).
+template class DemEngine<WaltonBraun, false>;
+template class DemEngine<WaltonBraun, true>;
 
 }  // namespace grainflow::dem
