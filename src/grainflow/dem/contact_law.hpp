@@ -84,4 +84,21 @@ concept ContactLaw = requires(const typename L::Params& params, typename L::Stat
   { L::elastic_energy(params, std::as_const(state), number, number) } -> std::same_as<double>;
 };
 
+// A cohesive law (adhesion) also keeps a contact after first touch until the surfaces are pulled
+// apart to detach_overlap (< 0: a neck), and bounds sliding by its own load (adhesion presses the
+// surfaces together beyond the normal force). The engine keeps such contacts alive and lists pairs
+// far enough apart for them; a law without adhesion has neither.
+template <class L>
+concept CohesiveContactLaw = ContactLaw<L> && requires(const typename L::Params& params, double number) {
+  { L::detach_overlap(params, number) } -> std::same_as<double>;    // m, for effective radius `number`
+  { L::sliding_load(params, number, number) } -> std::same_as<double>;  // N, for normal force, R*
+};
+
+// N: what the Coulomb limit multiplies, mu times this (|F_n| for a law without adhesion).
+template <ContactLaw L>
+double sliding_load(const typename L::Params& p, double normal_force, double effective_radius) {
+  if constexpr (CohesiveContactLaw<L>) return L::sliding_load(p, normal_force, effective_radius);
+  else return normal_force < 0.0 ? -normal_force : normal_force;
+}
+
 }  // namespace grainflow::dem

@@ -12,6 +12,7 @@
 #include "grainflow/config/contact_schema.hpp"
 #include "grainflow/dem/contact_law.hpp"
 #include "grainflow/dem/hertz_mindlin.hpp"
+#include "grainflow/dem/jkr.hpp"
 #include "grainflow/dem/linear_dashpot.hpp"
 #include "grainflow/dem/walton_braun.hpp"
 
@@ -21,7 +22,7 @@ template <ContactLaw... Laws>
 struct ContactLawList {};
 
 // The first is the default of contact.model.
-using RegisteredContactLaws = ContactLawList<WaltonBraun, LinearDashpot, HertzMindlin>;
+using RegisteredContactLaws = ContactLawList<WaltonBraun, LinearDashpot, HertzMindlin, Jkr>;
 
 // The registered names, comma-separated, for messages.
 std::string contact_law_names();

@@ -69,6 +69,7 @@ class DemEngine {
   using Params = typename Law::Params;
   using State = std::conditional_t<Rolling, WithRolling<typename Law::State>, typename Law::State>;
   static constexpr bool rolling_resistance = Rolling;
+  static constexpr bool cohesive = CohesiveContactLaw<Law>;  // contacts outlast touching (adhesion)
 
   // With `domain` (an MPI run of more than one rank), `state` is the whole initial state, the same
   // on every rank; the engine keeps its slab's particles and copies of the others' near it.
@@ -145,7 +146,7 @@ class DemEngine {
         const Vec3 xj = p.position[j] + shifts[pairs_.shift[k]];
         const Vec3 d = p.position[i] - xj;
         const double r = norm(d);
-        if (!(r < p.radius[i] + p.radius[j]) || r == 0.0) continue;
+        if (!pair_in_contact(r * r, i, j, true) || r == 0.0) continue;
         const ContactKinematics c = pair_kinematics(i, j, d, r);
         const int bump_face = std::max(p.wall[i], p.wall[j]);
         State memory = contacts_.pair_state[k];
@@ -160,7 +161,7 @@ class DemEngine {
       for (std::size_t i = 0; i < p.size(); ++i) {
         if (!contacts_.wall_touching[w][i] || p.motion[i] != Motion::free || p.ghost[i]) continue;
         const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
-        if (!(gap < p.radius[i])) continue;
+        if (!wall_in_contact(gap, p.radius[i], true, wall_params_[w])) continue;
         const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
         State memory = contacts_.wall_state[w][i];
         const ContactForce f = Law::force(wall_params_[w], law_state(memory), c, 0.0);
@@ -175,6 +176,32 @@ class DemEngine {
   Vec3 unwrapped_position(std::size_t i) const { return s_.box.unwrapped(s_.particles.position[i], s_.particles.image[i]); }
 
  private:
+  // Whether a pair at squared distance r2 is in contact: overlapping, or (an adhesive law) touching
+  // before and not yet pulled apart past its neck.
+  bool pair_in_contact(double r2, std::size_t i, std::size_t j, bool touching) const {
+    const ParticleStore& p = s_.particles;
+    const double ri = p.radius[i], rj = p.radius[j], sum = ri + rj;
+    if constexpr (cohesive) {
+      if (touching) {
+        const int bump_face = std::max(p.wall[i], p.wall[j]);
+        const double reach = sum - Law::detach_overlap(bump_face < 0 ? pair_params_ : bump_params_[bump_face], ri * rj / sum);
+        return r2 < reach * reach;
+      }
+    }
+    return r2 < sum * sum;
+  }
+  // The same for a particle whose centre is `gap` from a wall.
+  static bool wall_in_contact(double gap, double ri, bool touching, const Params& params) {
+    if constexpr (cohesive) {
+      if (touching) return gap < ri - Law::detach_overlap(params, ri);
+    }
+    return gap < ri;
+  }
+  // The overlap an energy is evaluated at: a neck's negative one for an adhesive law.
+  static double energy_overlap(double overlap) {
+    if constexpr (cohesive) return overlap;
+    else return std::max(0.0, overlap);
+  }
   static typename Law::State& law_state(State& s) {
     if constexpr (Rolling) return s.law;
     else return s;

@@ -39,7 +39,7 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
   }
   double max_radius = 0.0;
   for (double r : s_.particles.target_radius) max_radius = std::max(max_radius, r);
-  cell_size_ = 2.0 * max_radius + s_.skin;
+  cell_size_ = 2.0 * max_radius + s_.skin + s_.cohesion_reach;
   grid_.setup(s_.box, cell_size_, s_.particles.size());
   if (domain != nullptr && domain->comm->size() > 1) {
     domain_ = std::make_unique<DomainExchange<State>>(*domain->comm, domain->grid);
@@ -221,7 +221,7 @@ double DemEngine<Law, Rolling>::elastic_energy() const {
       const int bump_face = std::max(p.wall[i], p.wall[j]);
       const double effective_radius = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
       e += Law::elastic_energy(bump_face < 0 ? pair_params_ : bump_params_[bump_face], law_state(contacts_.pair_state[k]),
-                               std::max(0.0, overlap), effective_radius);
+                               energy_overlap(overlap), effective_radius);
       if constexpr (Rolling)
         e += RollingResistance::elastic_energy(bump_face < 0 ? rolling_.pair : bump_rolling_[bump_face],
                                                contacts_.pair_state[k].rolling, effective_radius);
@@ -232,7 +232,7 @@ double DemEngine<Law, Rolling>::elastic_energy() const {
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (!contacts_.wall_touching[w][i] || !p.counted(i)) continue;
       const double overlap = p.radius[i] - wall.inward * (p.position[i][wall.axis] - wall.position);
-      e += Law::elastic_energy(wall_params_[w], law_state(contacts_.wall_state[w][i]), std::max(0.0, overlap), p.radius[i]);
+      e += Law::elastic_energy(wall_params_[w], law_state(contacts_.wall_state[w][i]), energy_overlap(overlap), p.radius[i]);
       if constexpr (Rolling)
         e += RollingResistance::elastic_energy(rolling_.walls[w], contacts_.wall_state[w][i].rolling, p.radius[i]);
     }
@@ -323,7 +323,9 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
     grid_.bin(p.position);
   }
   if (domain_) domain_->index(p);
-  grid_.build_pairs(p, s_.box, s_.skin, threads_, pairs_, expected_pairs);
+  // Pairs within skin of touching, and of an adhesive neck's length further: every pair in contact
+  // until the next rebuild (no particle moves more than skin / 2 before it).
+  grid_.build_pairs(p, s_.box, s_.skin + s_.cohesion_reach, threads_, pairs_, expected_pairs);
   contacts_.restore(kept, pairs_, p.id, p.image);
   position_at_build_ = p.position;
   ++stats_.rebuilds;
@@ -383,9 +385,8 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
         const std::uint32_t j = pairs_.partner[k];
         const Vec3 d = xi - (p.position[j] + shifts[pairs_.shift[k]]);
         const double rj = p.radius[j];
-        const double sum = ri + rj;
         const double r2 = norm2(d);
-        if (r2 >= sum * sum) {
+        if (!pair_in_contact(r2, i, j, contacts_.pair_touching[k])) {
           contacts_.pair_touching[k] = 0;
           continue;
         }
@@ -465,7 +466,7 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
       if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
       const double ri = p.radius[i];
       const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
-      if (gap >= ri) {
+      if (!wall_in_contact(gap, ri, touching[i], params)) {
         touching[i] = 0;
         continue;
       }

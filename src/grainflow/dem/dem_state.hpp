@@ -36,6 +36,7 @@ struct DemState {
   double time_step = 0.0;    // s
   long step = 0;
   double skin = 0.0;         // m
+  double cohesion_reach = 0.0;  // m: how far apart an adhesive contact's surfaces may be pulled before it breaks
   std::vector<FlatWall> walls;
   std::array<Vec3, 6> bump_velocity{};      // m/s of the bumps of each face
   std::array<Vec3, 6> bump_displacement{};  // m, displacement applied so far to each face's bumps

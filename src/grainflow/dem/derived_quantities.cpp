@@ -89,6 +89,12 @@ DerivedQuantities derive(const CaseConfig& c) {
     d.law_problem = Law::problem(p, pair);
     d.time_step = Law::time_step(p, pair, c.run.collision_steps);
     d.time_step_lan = Law::time_step(p, pair, kLanCollisionSteps);
+    if constexpr (CohesiveContactLaw<Law>) {  // R* <= r_max for every pair and wall contact; the neck grows with R*
+      const double radius = 0.5 * d.max_diameter;
+      d.cohesion_reach = -Law::detach_overlap(p, radius);
+      for (int f = 0; f < 6; ++f)
+        d.cohesion_reach = std::max(d.cohesion_reach, -Law::detach_overlap(Law::wall_params(p, c.walls[f].contact, 0.0), radius));
+    }
   });
   if (c.run.time_step > 0.0) {
     d.time_step = c.run.time_step;

@@ -65,6 +65,7 @@ struct DerivedQuantities {
   int gravity_axis = 1;
   double gravity_magnitude = 0.0;        // m/s^2
   double skin = 0.0;                     // m
+  double cohesion_reach = 0.0;           // m, an adhesive law's largest neck (-detach_overlap at R* = r_max); 0 without
   double expansion_time = 0.0;           // s, radius expansion as used (particles.expansion_time or the default)
   double max_diameter = 0.0;             // m
   long moving_particles = 0, frozen_particles = 0;

@@ -147,15 +147,17 @@ HertzMindlin::Params HertzMindlin::wall_params(const Params& pair, const Contact
               wall_poisson);
 }
 
-std::optional<ParameterProblem> HertzMindlin::species_problem(const std::vector<SpeciesConfig>& species) {
+std::optional<ParameterProblem> HertzMindlin::material_problem(const std::vector<SpeciesConfig>& species,
+                                                               std::string_view law) {
   for (const SpeciesConfig& s : species) {
     if (!(s.youngs_modulus > 0.0))
-      return ParameterProblem{"youngs_modulus", "species '" + s.name + "' has none: contact.model = \"hertz_mindlin\" "
-                                                "needs each species' Young's modulus (Pa) and poisson_ratio"};
+      return ParameterProblem{"youngs_modulus", fmt::format("species '{}' has none: contact.model = \"{}\" needs each "
+                                                            "species' Young's modulus (Pa) and poisson_ratio", s.name, law)};
     if (s.youngs_modulus != species.front().youngs_modulus || s.poisson_ratio != species.front().poisson_ratio)
-      return ParameterProblem{"youngs_modulus", "species '" + s.name + "' and '" + species.front().name +
-                                                    "' are of different materials; hertz_mindlin takes one material "
-                                                    "for every species (give each the same youngs_modulus and poisson_ratio)"};
+      return ParameterProblem{"youngs_modulus",
+                              fmt::format("species '{}' and '{}' are of different materials; {} takes one material for "
+                                          "every species (give each the same youngs_modulus and poisson_ratio)",
+                                          s.name, species.front().name, law)};
   }
   return std::nullopt;
 }

@@ -104,7 +104,11 @@ struct HertzMindlin {
   static Params wall_params(const Params& pair, const ContactParameters& wall, double friction);
   static std::optional<ParameterProblem> problem(const Params&, const HeadOnImpact&) { return std::nullopt; }
   // Every species needs youngs_modulus, and all the same material (one E*, G* for every pair).
-  static std::optional<ParameterProblem> species_problem(const std::vector<SpeciesConfig>& species);
+  static std::optional<ParameterProblem> species_problem(const std::vector<SpeciesConfig>& species) {
+    return material_problem(species, name);
+  }
+  // The same, for any law of this material model called `law` (in the message).
+  static std::optional<ParameterProblem> material_problem(const std::vector<SpeciesConfig>& species, std::string_view law);
 
   // The damped Hertz impact at the impact's speed: e as asked, duration from the scaled equation.
   static BinaryContact binary_contact(const Params& p, const HeadOnImpact& impact);

@@ -232,6 +232,7 @@ DemState build_dem_state(const CaseConfig& c) {
   s.gravity = c.gravity;
   s.time_step = d.time_step;
   s.skin = d.skin;
+  s.cohesion_reach = d.cohesion_reach;
   s.species = c.species;
   add_walls(c, s);
   add_bumps(c, s);

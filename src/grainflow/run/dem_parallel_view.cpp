@@ -19,8 +19,9 @@ observe::RankReduce over_ranks(const parallel::Communicator& comm) {
 dem::DomainDecomposition dem_grid(const dem::DemState& initial, int ranks) {
   double largest = 0.0;
   for (double r : initial.particles.target_radius) largest = std::max(largest, r);
-  // Any pair a neighbour list can hold lies within 2 r_max + skin; a little more for round-off.
-  const double reach = (2.0 * largest + initial.skin) * (1.0 + 1e-9);
+  // Any pair a neighbour list can hold lies within 2 r_max + skin (+ an adhesive neck); a little
+  // more for round-off.
+  const double reach = (2.0 * largest + initial.skin + initial.cohesion_reach) * (1.0 + 1e-9);
   return dem::DomainDecomposition::balanced(initial.particles.position, initial.box, initial.gravity, ranks, reach);
 }
 

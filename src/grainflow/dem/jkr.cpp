@@ -1,0 +1,155 @@
+// The JKR law's case keys, parameters and closed forms.
+#include "grainflow/dem/jkr.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <mutex>
+
+#include <fmt/format.h>
+
+#include "grainflow/config/toml_reader.hpp"
+#include "grainflow/dem/dem_engine_impl.hpp"
+
+namespace grainflow::dem {
+namespace {
+
+constexpr double kNever = std::numeric_limits<double>::infinity();
+// Steps of the head-on impact's integration per Hertz duration: the ends (snap-on, the neck's
+// break) are placed to dt / 2, 2.5e-5 of the duration.
+constexpr int kImpactSteps = 20000;
+// Spheres still together after this many Hertz durations count as stuck: a rebound against
+// adhesion takes a few; a heavily damped pair creeps back into the adhesive well for far longer.
+constexpr int kStuckDurations = 10;
+
+double read_surface_energy(TomlReader& r) {
+  const double gamma = r.number("surface_energy", 0.0);
+  if (!(gamma >= 0.0)) r.fail("surface_energy", "must not be negative");
+  return gamma;
+}
+
+// J, U(a) of the adhesive contact with zero tangential memory.
+double normal_energy(const Jkr::Params& p, double a, double r) {
+  const double e = p.material.e_star, w = 2.0 * p.surface_energy;
+  return 8.0 * e * std::pow(a, 5) / (15.0 * r * r) - (4.0 / 3.0) * std::sqrt(2.0 * M_PI * w * e) * std::pow(a, 3.5) / r +
+         M_PI * w * a * a;
+}
+
+}  // namespace
+
+void Jkr::read(TomlReader& r, ContactParameters& out) {
+  HertzMindlin::read(r, out);
+  if (!r.has("surface_energy")) r.fail("surface_energy", "is required by contact.model = \"jkr\" (J/m^2)");
+  out.set("surface_energy", read_surface_energy(r));
+}
+
+void Jkr::read_wall(TomlReader& r, ContactParameters& out) {
+  HertzMindlin::read_wall(r, out);
+  if (r.has("surface_energy")) out.set("surface_energy", read_surface_energy(r));
+}
+
+Jkr::Params Jkr::pair_params(const ContactConfig& contact, const SpeciesConfig& reference) {
+  return {HertzMindlin::pair_params(contact, reference), contact.parameters.at("surface_energy")};
+}
+
+Jkr::Params Jkr::wall_params(const Params& pair, const ContactParameters& wall, double friction) {
+  return {HertzMindlin::wall_params(pair.material, wall, friction), wall.get("surface_energy", pair.surface_energy)};
+}
+
+std::optional<ParameterProblem> Jkr::species_problem(const std::vector<SpeciesConfig>& species) {
+  return HertzMindlin::material_problem(species, name);
+}
+
+BinaryContact Jkr::binary_contact(const Params& p, const HeadOnImpact& impact) {
+  if (!(impact.speed > 0.0)) return {kNever, 0.0};  // at rest they stick
+  // A case asks for a few impacts many times (derive, checks, `check`): each is integrated once.
+  using Key = std::array<double, 7>;
+  static std::mutex mutex;
+  static std::map<Key, BinaryContact> known;
+  const Key key{p.material.e_star, p.material.g_star, p.material.damping, p.surface_energy, impact.effective_mass,
+                impact.effective_radius, impact.speed};
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (const auto it = known.find(key); it != known.end()) return it->second;
+  }
+  const BinaryContact b = integrate_impact(p, impact);
+  const std::lock_guard<std::mutex> lock(mutex);
+  known.emplace(key, b);
+  return b;
+}
+
+BinaryContact Jkr::integrate_impact(const Params& p, const HeadOnImpact& impact) {
+  // Velocity Verlet on the overlap from first touch until the neck breaks. Stuck: once the kinetic
+  // energy and the curve's potential U together fall below U at the neck, which the dashpot only
+  // lowers, the neck can never be reached (U rises from the well to it).
+  const double dt = HertzMindlin::binary_contact(p.material, impact).duration / kImpactSteps;
+  const double detach = detach_overlap(p, impact.effective_radius);
+  State state{};
+  ContactKinematics k;
+  k.normal = {1.0, 0.0, 0.0};
+  k.effective_mass = impact.effective_mass;
+  k.effective_radius = impact.effective_radius;
+  double overlap = 0.0, speed = impact.speed, time = 0.0;  // speed: closing, > 0 while approaching
+  const double neck_energy = normal_energy(p, std::cbrt(M_PI * 2.0 * p.surface_energy * impact.effective_radius *
+                                                          impact.effective_radius / (8.0 * p.material.e_star)),
+                                           impact.effective_radius);
+  auto acceleration = [&] {
+    k.overlap = overlap;
+    k.normal_velocity = -speed;
+    return force(p, state, k, dt).normal / impact.effective_mass;
+  };
+  double a = acceleration();
+  for (long i = 0; i < long{kStuckDurations} * kImpactSteps; ++i) {
+    const double half = speed - 0.5 * dt * a;
+    const double next = overlap + half * dt;
+    if (next <= detach) {
+      const double crossing = time + dt * (overlap - detach) / (overlap - next);
+      return {crossing, (half - 0.5 * dt * a) / -impact.speed};
+    }
+    overlap = next;
+    speed = half;
+    a = acceleration();
+    speed -= 0.5 * dt * a;
+    time += dt;
+    const double energy = 0.5 * impact.effective_mass * speed * speed +
+                          normal_energy(p, contact_radius(p.material.e_star, 2.0 * p.surface_energy, impact.effective_radius, overlap),
+                                        impact.effective_radius);
+    if (energy < neck_energy) return {kNever, 0.0};
+  }
+  return {kNever, 0.0};
+}
+
+double Jkr::time_step(const Params& p, const HeadOnImpact& pair, int collision_steps) {
+  return HertzMindlin::time_step(p.material, pair, collision_steps);
+}
+
+double Jkr::sticking_speed(const Params& p, const HeadOnImpact& impact) {
+  const double e = p.material.e_star, w = 2.0 * p.surface_energy, r = impact.effective_radius;
+  const double snap = std::cbrt(2.0 * M_PI * w * r * r / e);  // a at delta = 0
+  const double neck = std::cbrt(M_PI * w * r * r / (8.0 * e));  // a at delta_c
+  const double lost = normal_energy(p, neck, r) - normal_energy(p, snap, r);
+  return std::sqrt(2.0 * lost / impact.effective_mass);
+}
+
+std::vector<CheckLine> Jkr::describe(const Params& p, const HeadOnImpact& impact) {
+  std::vector<CheckLine> lines = HertzMindlin::describe(p.material, impact);
+  lines[2].label = "e (no adhesion)";
+  const BinaryContact b = binary_contact(p, impact);
+  lines.push_back({"surface energy", fmt::format("{:.6g} J/m^2: pull-off force {:.6g} N, neck breaks at overlap {:.4g} m",
+                                                 p.surface_energy, pull_off_force(p, impact.effective_radius),
+                                                 detach_overlap(p, impact.effective_radius))});
+  lines.push_back({"adhesive impact", std::isinf(b.duration)
+                                          ? fmt::format("sticks at {:.6g} m/s (elastic sticking speed {:.6g} m/s)",
+                                                        impact.speed, sticking_speed(p, impact))
+                                          : fmt::format("e = {:.6g}, {:.6g} s at {:.6g} m/s (elastic sticking speed {:.6g} m/s)",
+                                                        b.restitution, b.duration, impact.speed, sticking_speed(p, impact))});
+  return lines;
+}
+
+// The engine's time loop for this law, without and with rolling resistance, compiled here once
+// (dem_engine_impl.hpp).
+template class DemEngine<Jkr, false>;
+template class DemEngine<Jkr, true>;
+
+}  // namespace grainflow::dem
