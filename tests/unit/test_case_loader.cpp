@@ -167,6 +167,8 @@ TEST(CaseLoader, RollingResistanceKeysAreChecked) {
                        "contact.rolling_friction", "[0, 1]");
   expect_input_error(replace(kMinimal, "friction = 0.5\n", "friction = 0.5\nrolling_model = \"epsd\"\n"),
                      "contact.rolling_model", "needs rolling_friction");
+  // mu_r = 0 switches a model off (an override of a case with rolling resistance).
+  EXPECT_EQ(load_case_from_string(with, kLabel, {"contact.rolling_friction=0"}).contact.rolling_model, "none");
   expect_input_error(replace(with, "rolling_friction = 0.1\n", "rolling_friction = 0.1\nrolling_model = \"cdt\"\n"),
                      "contact.rolling_model", "must be");
   expect_input_error(replace(with, "rolling_friction = 0.1\n",

@@ -195,13 +195,19 @@ void read_rolling_resistance(TomlReader& r, ContactConfig& k) {
   if (k.rolling_model != "none" && k.rolling_model != "constant_torque" && k.rolling_model != "epsd")
     r.fail("rolling_model", "must be \"none\", \"constant_torque\" or \"epsd\"");
   if (rolling && k.rolling_model == "none") r.fail("rolling_model", "is \"none\" but rolling_friction is given");
-  if (!rolling && k.rolling_model != "none") r.fail("rolling_model", "needs rolling_friction > 0");
+  if (!r.has("rolling_friction") && k.rolling_model != "none") r.fail("rolling_model", "needs rolling_friction > 0");
   for (const char* key : {"rolling_damping", "rolling_stiffness"})
     if (r.has(key) && k.rolling_model != "epsd") r.fail(key, "belongs to rolling_model = \"epsd\"");
-  k.rolling_damping = r.number("rolling_damping", k.rolling_damping);
-  if (!(k.rolling_damping >= 0.0 && k.rolling_damping <= 1.0)) r.fail("rolling_damping", "must lie in [0, 1] (1 is critical)");
-  k.rolling_stiffness = r.number("rolling_stiffness", k.rolling_stiffness);
-  if (!(k.rolling_stiffness > 0.0)) r.fail("rolling_stiffness", "must be positive");
+  const double damping = r.number("rolling_damping", k.rolling_damping);
+  if (!(damping >= 0.0 && damping <= 1.0)) r.fail("rolling_damping", "must lie in [0, 1] (1 is critical)");
+  const double stiffness = r.number("rolling_stiffness", k.rolling_stiffness);
+  if (!(stiffness > 0.0)) r.fail("rolling_stiffness", "must be positive");
+  if (!rolling) {  // rolling_friction = 0 (e.g. --set) switches a case's model off
+    k.rolling_model = "none";
+    return;
+  }
+  k.rolling_damping = damping;
+  k.rolling_stiffness = stiffness;
 }
 
 // [contact] (DEM): the law by its schema
