@@ -41,24 +41,37 @@ struct Jkr {
 
   struct State {
     Vec3 tangential_force;      // N, the tangential spring's force on i at the previous step
-    double contact_radius = 0.0;  // m, a at the previous step (unloading scales the spring)
+    double contact_radius = 0.0;  // m, a at the previous step (unloading scales the spring; Newton starts there)
   };
 
   // m: the contact radius a on the stable branch for overlap `overlap` (>= delta_c): the largest root
   // of t^4 - R* c t - R* delta = 0, t = sqrt(a), c = sqrt(2 pi w / E*), by Newton's method from
   // above (the quartic is convex, so the iterates fall monotonically onto the root).
-  static double contact_radius(double e_star, double work_of_adhesion, double effective_radius, double overlap) {
+  // `guess` (m, e.g. the contact's radius a step ago; 0: none) only speeds it up: a Newton step
+  // from any point where the quartic rises lands above the root, whence the iterates fall onto it.
+  static double contact_radius(double e_star, double work_of_adhesion, double effective_radius, double overlap,
+                               double guess = 0.0) {
     const double c = std::sqrt(2.0 * M_PI * work_of_adhesion / e_star);
     const double r = effective_radius;
     if (c == 0.0) return overlap > 0.0 ? std::sqrt(r * overlap) : 0.0;  // Hertz
-    // g(t) >= 0 where t^4 / 2 covers both R* c t and R* |delta|.
-    double t = std::max(std::cbrt(2.0 * r * c), std::sqrt(std::sqrt(2.0 * r * std::fabs(overlap))));
-    const double t_min = std::cbrt(0.25 * r * c);  // g'(t_min) = 0: below delta_c there is no root
+    const double rc = r * c;
+    double t = 0.0;
+    const double t_guess = std::sqrt(guess);
+    const double slope_guess = 4.0 * t_guess * t_guess * t_guess - rc;
+    if (slope_guess > 0.0) {  // on the rising side of the quartic (beyond t_min)
+      const double g = t_guess * t_guess * t_guess * t_guess - rc * t_guess - r * overlap;
+      t = g >= 0.0 ? t_guess : t_guess - g / slope_guess;
+    }
+    if (!(t > 0.0) || t > 2.0 * t_guess) {  // no guess, or far off: g(t) >= 0 where t^4 / 2 covers R* c t and R* |delta|
+      t = std::max(std::cbrt(2.0 * rc), std::sqrt(std::sqrt(2.0 * r * std::fabs(overlap))));
+    }
     for (int iteration = 0; iteration < 60; ++iteration) {
       const double t2 = t * t;
-      const double g = t2 * t2 - r * c * t - r * overlap;
-      const double slope = 4.0 * t2 * t - r * c;
-      const double next = std::max(t_min, t - g / slope);
+      const double g = t2 * t2 - rc * t - r * overlap;
+      const double slope = 4.0 * t2 * t - rc;
+      double next = t - g / slope;
+      // Not below t_min, where g' = 0: below delta_c there is no root and the curve ends there.
+      if (!(4.0 * next * next * next - rc > 0.0)) next = std::cbrt(0.25 * rc);
       if (!(next < t) || t - next <= 1e-15 * t) {
         t = next;
         break;
@@ -77,17 +90,18 @@ struct Jkr {
   static ContactForce force(const Params& p, State& s, const ContactKinematics& c, double dt) {
     const HertzMindlin::Params& m = p.material;
     ContactForce out;
-    const double a = contact_radius(m.e_star, 2.0 * p.surface_energy, c.effective_radius, c.overlap);
+    const double a = contact_radius(m.e_star, 2.0 * p.surface_energy, c.effective_radius, c.overlap, s.contact_radius);
     const double normal_stiffness = 2.0 * m.e_star * a;  // S_n, Tsuji's damping as in Hertz–Mindlin
     const double damping = m.damping * std::sqrt(normal_stiffness * c.effective_mass);
     out.normal = elastic_force(p, a, c.effective_radius) - damping * c.normal_velocity;
+    const double previous = s.contact_radius;
+    s.contact_radius = a;
     if (m.friction <= 0.0) return out;
 
     // Mindlin on the JKR patch: S_t = 8 G* a, the stored force scaled down with a while it shrinks.
     const double tangential_stiffness = 8.0 * m.g_star * a;
     Vec3 spring = s.tangential_force - dot(s.tangential_force, c.normal) * c.normal;
-    if (a < s.contact_radius) spring *= a / s.contact_radius;
-    s.contact_radius = a;
+    if (a < previous) spring *= a / previous;
     spring -= (tangential_stiffness * dt) * c.slip_velocity;
     const Vec3 viscous = (-m.damping * std::sqrt(tangential_stiffness * c.effective_mass)) * c.slip_velocity;
     Vec3 total = spring + viscous;
