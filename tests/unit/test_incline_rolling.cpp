@@ -6,12 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 #include <string>
 #include <variant>
 
 #include "grainflow/dem/engine_factory.hpp"
+#include "dem_incline_case.hpp"
 #include "test_support.hpp"
 
 using namespace grainflow;
@@ -50,30 +50,8 @@ Trajectory run_incline(const std::string& model, double theta) {
       ? "model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.9\n"
       : "model = \"linear_dashpot\"\nkn = 1.0e4\ngamma_n = 500.0\n";
   const std::string wall = model == "walton_braun" ? "restitution = 0.5\n" : "gamma_n = 500.0\n";
-  char gravity[128];
-  std::snprintf(gravity, sizeof gravity, "[%.17g, %.17g, 0.0]", kG * std::sin(theta), -kG * std::cos(theta));
-  const std::string text = R"(
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [0.02, 0.02, 0.02]
-boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
-[gravity]
-vector = )" + std::string(gravity) + R"(
-[[species]]
-name = "glass"
-diameter = 0.002
-density = 2500.0
-[particles]
-init = "file"
-file = ")" + csv.path() + R"("
-[contact]
-)" + contact + R"(friction = 0.0
-[walls.ylo]
-friction = 0.5
-)" + wall + R"(
-[run]
-duration = 1.0
-)";
+  const std::string text =
+      test::dem_incline_case(kG, theta, csv.path(), contact + "friction = 0.0\n", "friction = 0.5\n" + wall);
   auto engine = test::engine_from_toml(text, testing::TempDir() + "incline.toml", 1);
   Trajectory out;
   std::visit([&](auto& e) {

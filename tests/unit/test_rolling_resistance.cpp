@@ -10,13 +10,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 #include <string>
 #include <variant>
 
 #include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/dem/rolling_resistance.hpp"
+#include "dem_incline_case.hpp"
 #include "test_support.hpp"
 
 using namespace grainflow;
@@ -141,27 +141,8 @@ std::vector<Motion> run_sphere(const std::string& law, const std::string& model,
   const test::ParticleFile csv("rolling.csv", row.str(), "species,x,y,z,vx,vy,vz,wx,wy,wz");
   const std::string contact = law == "walton_braun" ? "model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.9\n"
                                                     : "model = \"linear_dashpot\"\nkn = 1.0e4\ngamma_n = 500.0\n";
-  char gravity[128];
-  std::snprintf(gravity, sizeof gravity, "[%.17g, %.17g, 0.0]", kG * std::sin(theta), -kG * std::cos(theta));
-  const std::string text = R"(
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [0.02, 0.02, 0.02]
-boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
-[gravity]
-vector = )" + std::string(gravity) + R"(
-[[species]]
-name = "glass"
-diameter = 0.002
-density = 2500.0
-[particles]
-init = "file"
-file = ")" + csv.path() + R"("
-[contact]
-)" + contact + "friction = 0.5\nrolling_model = \"" + model + "\"\nrolling_friction = 0.1\n" + R"(
-[run]
-duration = 1.0
-)";
+  const std::string text = test::dem_incline_case(
+      kG, theta, csv.path(), contact + "friction = 0.5\nrolling_model = \"" + model + "\"\nrolling_friction = 0.1\n");
   auto engine = test::engine_from_toml(text, testing::TempDir() + "rolling.toml", 1);
   std::vector<Motion> out;
   std::visit([&](auto& e) {

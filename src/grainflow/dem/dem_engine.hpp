@@ -210,28 +210,22 @@ class DemEngine {
     if constexpr (Rolling) return s.law;
     else return s;
   }
-  // Pair i, j (j's image nearest i): what the rolling model reads, with the law's normal force.
-  RollingKinematics pair_rolling(std::size_t i, std::size_t j, const ContactKinematics& c, double normal_force) const {
+  // What the rolling model reads of particle i touching j (kWall: a wall), with the law's normal
+  // force; the rolling inertia only where the epsd dashpot uses it.
+  static constexpr std::size_t kWall = ~std::size_t{0};
+  RollingKinematics rolling_kinematics(const RollingParams& r, std::size_t i, std::size_t j, const ContactKinematics& c,
+                                       double normal_force) const {
     const ParticleStore& p = s_.particles;
     RollingKinematics k;
     k.normal = c.normal;
-    k.relative_spin = p.angular_velocity[i] - p.angular_velocity[j];
+    k.relative_spin = j == kWall ? p.angular_velocity[i] : p.angular_velocity[i] - p.angular_velocity[j];
     k.effective_radius = c.effective_radius;
     k.normal_force = normal_force;
-    const double inverse = RollingResistance::inverse_rolling_inertia(p.inv_mass[i], p.inv_inertia[i], p.radius[i]) +
-                           RollingResistance::inverse_rolling_inertia(p.inv_mass[j], p.inv_inertia[j], p.radius[j]);
-    k.rolling_inertia = inverse > 0.0 ? 1.0 / inverse : 0.0;
-    return k;
-  }
-  RollingKinematics wall_rolling(std::size_t i, const ContactKinematics& c, double normal_force) const {
-    const ParticleStore& p = s_.particles;
-    RollingKinematics k;
-    k.normal = c.normal;
-    k.relative_spin = p.angular_velocity[i];
-    k.effective_radius = c.effective_radius;
-    k.normal_force = normal_force;
-    const double inverse = RollingResistance::inverse_rolling_inertia(p.inv_mass[i], p.inv_inertia[i], p.radius[i]);
-    k.rolling_inertia = inverse > 0.0 ? 1.0 / inverse : 0.0;
+    if (r.model == RollingModel::epsd && r.damping > 0.0) {
+      double inverse = RollingResistance::inverse_rolling_inertia(p.inv_mass[i], p.inv_inertia[i], p.radius[i]);
+      if (j != kWall) inverse += RollingResistance::inverse_rolling_inertia(p.inv_mass[j], p.inv_inertia[j], p.radius[j]);
+      k.rolling_inertia = inverse > 0.0 ? 1.0 / inverse : 0.0;
+    }
     return k;
   }
 

@@ -405,8 +405,9 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
         torque[i] -= ri * arm;
         Vec3 torque_j = -rj * arm;
         if constexpr (Rolling) {  // a couple: +M on i, -M on j
-          const Vec3 m = RollingResistance::torque(bump_face < 0 ? rolling_.pair : bump_rolling_[bump_face],
-                                                   contacts_.pair_state[k].rolling, pair_rolling(i, j, c, f.normal), dt);
+          const RollingParams& rolling = bump_face < 0 ? rolling_.pair : bump_rolling_[bump_face];
+          const Vec3 m = RollingResistance::torque(rolling, contacts_.pair_state[k].rolling,
+                                                   rolling_kinematics(rolling, i, j, c, f.normal), dt);
           torque[i] += m;
           torque_j -= m;
         }
@@ -481,7 +482,8 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
       p.force[i] += total;
       p.torque[i] -= ri * cross(normal, f.tangential);
       if constexpr (Rolling)
-        p.torque[i] += RollingResistance::torque(rolling_.walls[w], states[i].rolling, wall_rolling(i, c, f.normal), dt);
+        p.torque[i] += RollingResistance::torque(rolling_.walls[w], states[i].rolling,
+                                                 rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal), dt);
       wall_power += dot(total, wall.velocity);
       if (growth_rate > 0.0 && ri < p.target_radius[i]) growth_power += f.normal * growth_rate;
       max_ratio = std::max(max_ratio, c.overlap / (2.0 * ri));

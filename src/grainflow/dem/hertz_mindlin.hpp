@@ -64,35 +64,46 @@ struct HertzMindlin {
     const double damping = p.damping * std::sqrt(normal_stiffness * c.effective_mass);
     out.normal = std::max(0.0, elastic - damping * c.normal_velocity);  // never attractive
     if (p.friction <= 0.0) return out;
-
-    // Mindlin: S_t = 8 G* a. The stored force, turned into the current tangent plane, shrinks with
-    // the stiffness while the contact unloads (Mindlin–Deresiewicz: the annulus of the shrinking
-    // patch releases its share), so that no energy is created; the new slip adds S_t dS.
-    const double tangential_stiffness = 8.0 * p.g_star * contact_radius;
-    Vec3 spring = s.tangential_force - dot(s.tangential_force, c.normal) * c.normal;
-    if (c.overlap < s.overlap) spring *= std::sqrt(c.overlap / s.overlap);
+    // The patch's radius shrinks as sqrt(delta) while the contact unloads.
+    const double unloading = c.overlap < s.overlap ? std::sqrt(c.overlap / s.overlap) : 1.0;
     s.overlap = c.overlap;
+    out.tangential = mindlin_tangential(p, s.tangential_force, contact_radius, unloading, c, dt, p.friction * out.normal);
+    return out;
+  }
+
+  // Mindlin's tangential spring-dashpot on a patch of radius a: S_t = 8 G* a. The spring's force
+  // a step ago, `stored`, turned into the current tangent plane, shrinks by `unloading` (<= 1, the
+  // patch's radius ratio) while the contact unloads (Mindlin–Deresiewicz: the annulus of the
+  // shrinking patch releases its share), so that no energy is created; the new slip adds S_t dS.
+  // Spring and dashpot together are capped at `limit` (Coulomb). Returns the tangential force on i;
+  // `stored` becomes the spring's part of it.
+  static Vec3 mindlin_tangential(const Params& p, Vec3& stored, double a, double unloading, const ContactKinematics& c,
+                                 double dt, double limit) {
+    const double tangential_stiffness = 8.0 * p.g_star * a;
+    Vec3 spring = stored - dot(stored, c.normal) * c.normal;
+    spring *= unloading;
     spring -= (tangential_stiffness * dt) * c.slip_velocity;
     const Vec3 viscous = (-p.damping * std::sqrt(tangential_stiffness * c.effective_mass)) * c.slip_velocity;
     Vec3 total = spring + viscous;
-    const double limit = p.friction * out.normal;
     const double magnitude = norm(total);
     if (magnitude > limit) {
       // Sliding: spring and dashpot together sit on the Coulomb limit.
       total *= magnitude > 0.0 ? limit / magnitude : 0.0;
       spring = total - viscous;
     }
-    s.tangential_force = spring;
-    out.tangential = total;
-    return out;
+    stored = spring;
+    return total;
+  }
+  // J, the Mindlin spring's F^2 / (2 S_t) on a patch of radius a.
+  static double mindlin_energy(const Params& p, const Vec3& stored, double a) {
+    const double tangential_stiffness = 8.0 * p.g_star * a;
+    return tangential_stiffness > 0.0 ? 0.5 * norm2(stored) / tangential_stiffness : 0.0;
   }
 
   // The Hertz spring's 8/15 E* sqrt(R*) delta^5/2 and the tangential spring's F^2 / (2 S_t).
   static double elastic_energy(const Params& p, const State& s, double overlap, double effective_radius) {
     const double contact_radius = std::sqrt(effective_radius * overlap);
-    const double tangential_stiffness = 8.0 * p.g_star * contact_radius;
-    const double tangential = tangential_stiffness > 0.0 ? 0.5 * norm2(s.tangential_force) / tangential_stiffness : 0.0;
-    return (8.0 / 15.0) * p.e_star * contact_radius * overlap * overlap + tangential;
+    return (8.0 / 15.0) * p.e_star * contact_radius * overlap * overlap + mindlin_energy(p, s.tangential_force, contact_radius);
   }
 
   // [contact]: restitution (default 0.9); E and nu are the species' youngs_modulus and poisson_ratio.

@@ -23,17 +23,15 @@ constexpr int kImpactSteps = 20000;
 // adhesion takes a few; a heavily damped pair creeps back into the adhesive well for far longer.
 constexpr int kStuckDurations = 10;
 
+// m: the contact radius at the neck's break, delta_c, where the curve turns: a^3 = pi w R*^2 / (8 E*).
+double neck_radius(const Jkr::Params& p, double r) {
+  return std::cbrt(M_PI * 2.0 * p.surface_energy * r * r / (8.0 * p.material.e_star));
+}
+
 double read_surface_energy(TomlReader& r) {
   const double gamma = r.number("surface_energy", 0.0);
   if (!(gamma >= 0.0)) r.fail("surface_energy", "must not be negative");
   return gamma;
-}
-
-// J, U(a) of the adhesive contact with zero tangential memory.
-double normal_energy(const Jkr::Params& p, double a, double r) {
-  const double e = p.material.e_star, w = 2.0 * p.surface_energy;
-  return 8.0 * e * std::pow(a, 5) / (15.0 * r * r) - (4.0 / 3.0) * std::sqrt(2.0 * M_PI * w * e) * std::pow(a, 3.5) / r +
-         M_PI * w * a * a;
 }
 
 }  // namespace
@@ -91,9 +89,7 @@ BinaryContact Jkr::integrate_impact(const Params& p, const HeadOnImpact& impact)
   k.effective_mass = impact.effective_mass;
   k.effective_radius = impact.effective_radius;
   double overlap = 0.0, speed = impact.speed, time = 0.0;  // speed: closing, > 0 while approaching
-  const double neck_energy = normal_energy(p, std::cbrt(M_PI * 2.0 * p.surface_energy * impact.effective_radius *
-                                                          impact.effective_radius / (8.0 * p.material.e_star)),
-                                           impact.effective_radius);
+  const double neck_energy = adhesive_energy(p, neck_radius(p, impact.effective_radius), impact.effective_radius);
   auto acceleration = [&] {
     k.overlap = overlap;
     k.normal_velocity = -speed;
@@ -112,9 +108,9 @@ BinaryContact Jkr::integrate_impact(const Params& p, const HeadOnImpact& impact)
     a = acceleration();
     speed -= 0.5 * dt * a;
     time += dt;
+    // The force just found the contact radius at this overlap; the state keeps it.
     const double energy = 0.5 * impact.effective_mass * speed * speed +
-                          normal_energy(p, contact_radius(p.material.e_star, 2.0 * p.surface_energy, impact.effective_radius, overlap),
-                                        impact.effective_radius);
+                          adhesive_energy(p, state.contact_radius, impact.effective_radius);
     if (energy < neck_energy) return {kNever, 0.0};
   }
   return {kNever, 0.0};
@@ -127,14 +123,14 @@ double Jkr::time_step(const Params& p, const HeadOnImpact& pair, int collision_s
 double Jkr::sticking_speed(const Params& p, const HeadOnImpact& impact) {
   const double e = p.material.e_star, w = 2.0 * p.surface_energy, r = impact.effective_radius;
   const double snap = std::cbrt(2.0 * M_PI * w * r * r / e);  // a at delta = 0
-  const double neck = std::cbrt(M_PI * w * r * r / (8.0 * e));  // a at delta_c
-  const double lost = normal_energy(p, neck, r) - normal_energy(p, snap, r);
+  const double lost = adhesive_energy(p, neck_radius(p, r), r) - adhesive_energy(p, snap, r);
   return std::sqrt(2.0 * lost / impact.effective_mass);
 }
 
 std::vector<CheckLine> Jkr::describe(const Params& p, const HeadOnImpact& impact) {
   std::vector<CheckLine> lines = HertzMindlin::describe(p.material, impact);
-  lines[2].label = "e (no adhesion)";
+  for (auto& line : lines)
+    if (line.label.starts_with("e ")) line.label = "e (no adhesion)";
   const BinaryContact b = binary_contact(p, impact);
   lines.push_back({"surface energy", fmt::format("{:.6g} J/m^2: pull-off force {:.6g} N, neck breaks at overlap {:.4g} m",
                                                  p.surface_energy, pull_off_force(p, impact.effective_radius),

@@ -97,22 +97,9 @@ struct Jkr {
     const double previous = s.contact_radius;
     s.contact_radius = a;
     if (m.friction <= 0.0) return out;
-
-    // Mindlin on the JKR patch: S_t = 8 G* a, the stored force scaled down with a while it shrinks.
-    const double tangential_stiffness = 8.0 * m.g_star * a;
-    Vec3 spring = s.tangential_force - dot(s.tangential_force, c.normal) * c.normal;
-    if (a < previous) spring *= a / previous;
-    spring -= (tangential_stiffness * dt) * c.slip_velocity;
-    const Vec3 viscous = (-m.damping * std::sqrt(tangential_stiffness * c.effective_mass)) * c.slip_velocity;
-    Vec3 total = spring + viscous;
-    const double limit = m.friction * sliding_load(p, out.normal, c.effective_radius);
-    const double magnitude = norm(total);
-    if (magnitude > limit) {
-      total *= magnitude > 0.0 ? limit / magnitude : 0.0;
-      spring = total - viscous;
-    }
-    s.tangential_force = spring;
-    out.tangential = total;
+    // Mindlin on the JKR patch, the stored force scaled down with a while it shrinks.
+    out.tangential = HertzMindlin::mindlin_tangential(m, s.tangential_force, a, a < previous ? a / previous : 1.0, c, dt,
+                                                      m.friction * sliding_load(p, out.normal, c.effective_radius));
     return out;
   }
 
@@ -131,16 +118,17 @@ struct Jkr {
   }
 
   // J, U(a) = integral of F d(delta) from the separated state: 8 E* a^5 / (15 R*^2)
-  // - (4/3) sqrt(2 pi w E*) a^7/2 / R* + pi w a^2, with the tangential spring's F^2 / (2 S_t). The
-  // jumps of U at snap-on and at break are the energy JKR's hysteresis loses.
-  static double elastic_energy(const Params& p, const State& s, double overlap, double effective_radius) {
+  // - (4/3) sqrt(2 pi w E*) a^7/2 / R* + pi w a^2. The jumps of U at snap-on and at break are the
+  // energy JKR's hysteresis loses.
+  static double adhesive_energy(const Params& p, double a, double effective_radius) {
     const double e = p.material.e_star, w = 2.0 * p.surface_energy, r = effective_radius;
-    const double a = contact_radius(e, w, r, overlap);
-    const double normal = 8.0 * e * std::pow(a, 5) / (15.0 * r * r) -
-                          (4.0 / 3.0) * std::sqrt(2.0 * M_PI * w * e) * std::pow(a, 3.5) / r + M_PI * w * a * a;
-    const double tangential_stiffness = 8.0 * p.material.g_star * a;
-    const double tangential = tangential_stiffness > 0.0 ? 0.5 * norm2(s.tangential_force) / tangential_stiffness : 0.0;
-    return normal + tangential;
+    return 8.0 * e * std::pow(a, 5) / (15.0 * r * r) - (4.0 / 3.0) * std::sqrt(2.0 * M_PI * w * e) * std::pow(a, 3.5) / r +
+           M_PI * w * a * a;
+  }
+  // U(a) with the tangential spring's F^2 / (2 S_t).
+  static double elastic_energy(const Params& p, const State& s, double overlap, double effective_radius) {
+    const double a = contact_radius(p.material.e_star, 2.0 * p.surface_energy, effective_radius, overlap);
+    return adhesive_energy(p, a, effective_radius) + HertzMindlin::mindlin_energy(p.material, s.tangential_force, a);
   }
 
   // [contact]: restitution (0.9, of the same impact without adhesion), surface_energy (required).
