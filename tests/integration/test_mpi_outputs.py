@@ -13,6 +13,9 @@ Lan's bed (poured, then shaken; the short run of test_mpi_dem.py) with [trajecto
 - zone_series.h5: each zone's instantaneous mean velocity.
 - convection.csv: the same visits in every cell (counts: exactly), the same mean velocities.
 - tracers.csv: the same rows in the same order (time, then id).
+- coarse_grained.vti: the same density, momentum and contact stress in every cell (each contact
+  between particles of two ranks is listed on one of them: a doubled or lost contact would move
+  the stress by a contact's share, ~1e-3 of the field's largest value).
 - snapshots: the last one, read with VTK's parallel reader from its .pvtu pieces, holds every
   particle once (no ghost copies) at one rank's positions; `grainflow plot`'s reader joins the
   pieces too.
@@ -37,7 +40,7 @@ import time
 import h5py
 import numpy
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
+from vtkmodules.vtkIOXML import vtkXMLImageDataReader, vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
@@ -62,8 +65,19 @@ start = 0.005
 [tracers]
 particles = [0, 7, 100, 150, 238]
 interval = 0.001
+
+[coarse_grain]
+start = 0.005
 """
 FLOOR_SPEED = 0.1  # m/s, the scale of the bed's velocities (the drive's peak speed is of this order)
+
+
+def read_vti_cells(path):
+    reader = vtkXMLImageDataReader()
+    reader.SetFileName(path)
+    reader.Update()
+    cells = reader.GetOutput().GetCellData()
+    return {cells.GetArrayName(k): vtk_to_numpy(cells.GetArray(k)) for k in range(cells.GetNumberOfArrays())}
 
 
 def datasets(path):
@@ -112,6 +126,12 @@ def compare_outputs(one, two):
         for key in ("velocity_horizontal", "velocity_vertical"):
             gap = abs(float(r[key]) - float(s[key]))
             check(gap <= 1e-9 * FLOOR_SPEED, f"convection.csv cell {r['column']},{r['row']}: {key} differs by {gap:.3g}")
+
+    a, b = read_vti_cells(os.path.join(one, "coarse_grained.vti")), read_vti_cells(os.path.join(two, "coarse_grained.vti"))
+    for name in ("density", "momentum_density", "contact_stress", "kinetic_stress"):
+        scale = float(numpy.max(numpy.abs(a[name])))
+        gap = float(numpy.max(numpy.abs(a[name] - b[name])))
+        check(scale > 0.0 and gap <= 1e-9 * scale, f"coarse_grained.vti {name}: 1 and 2 ranks differ by {gap:.3g} (scale {scale:.3g})")
 
     a, b = read_csv(os.path.join(one, "tracers.csv")), read_csv(os.path.join(two, "tracers.csv"))
     check(len(a) == len(b) and len(a) >= 5 * 25, f"tracers.csv: {len(a)} rows (1 rank), {len(b)} (2 ranks)")
@@ -258,7 +278,7 @@ def main():
         status, err = run_ranks(exe, 2, split, case=case, args=SHORT + every + ["--restart", checkpoint])
         check(status == 0, f"second half: exit {status}: {err[-2000:]}")
         same_files(whole, split, ["final_state.csv", "timeseries.csv", "profiles.csv", "tracers.csv",
-                                  "convection.csv", "trajectory.h5", "zone_series.h5"])
+                                  "convection.csv", "trajectory.h5", "zone_series.h5", "coarse_grained.vti"])
 
         # The 2-rank checkpoint continued on 1 and on 4 ranks from its portable state, against the
         # run that never stopped (2 ranks).

@@ -440,6 +440,26 @@ interval = 0.5
 )";
 }
 
+TEST(CaseLoader, CoarseGrainKeysAreChecked) {
+  const std::string with = kMinimal + "\n[coarse_grain]\n";
+  const CaseConfig c = load_case_from_string(with, kLabel);
+  EXPECT_TRUE(c.coarse_grain.enabled);
+  // Defaults from the diameter, whatever the units: a Gaussian of half a diameter, cells of one width.
+  EXPECT_DOUBLE_EQ(c.coarse_grain.kernel_size(0.003), 0.0015);
+  EXPECT_EQ(c.coarse_grain.grid({0.02, 0.05, 0.02}, 0.003), (std::array<int, 3>{14, 34, 14}));
+  expect_input_error(with + "kernel = \"box\"\n", "coarse_grain.kernel", "must be");
+  expect_input_error(with + "cutoff = 0.004\n", "coarse_grain.cutoff", "belongs to kernel = \"lucy\"");
+  expect_input_error(with + "kernel = \"lucy\"\nwidth = 0.004\n", "coarse_grain.width", "belongs to kernel = \"gaussian\"");
+  expect_input_error(with + "width = -1.0\n", "coarse_grain.width", "positive");
+  expect_input_error(with + "cells = [4, 4]\n", "coarse_grain.cells", "three cell counts");
+  expect_input_error(with + "cells = [4, 0, 4]\n", "coarse_grain.cells", "[1, 100000]");
+  // 5 mm cells under a kernel of 1.5 mm standard deviation would bin, not coarse-grain.
+  expect_input_error(with + "cells = [4, 10, 4]\n", "coarse_grain.cells", "not resolved");
+  expect_input_error(with + "interval = 1.0e-9\n", "coarse_grain.interval", "shorter than one time step");
+  expect_input_error(replace(sphere_lattice_case("[3.0, 3.0, 3.0]"), "[run]", "[coarse_grain]\n[run]"), "coarse_grain",
+                     "DEM engine only");
+}
+
 // Found by fuzzing (make fuzz): a lattice placement over a huge region counted its sites in a long,
 // and 1e8 x 1e8 x 1e8 sites overflowed it (undefined behaviour, caught by UBSan in the debug
 // build). Sites are now counted in double: such a region validates, for both engines.

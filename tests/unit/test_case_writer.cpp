@@ -137,6 +137,13 @@ particles = [1, 2]
 species = ["big"]
 start = 0.01
 interval = 0.003
+
+[coarse_grain]
+kernel = "gaussian"
+width = 0.0025
+cells = [5, 25, 5]
+start = 0.05
+interval = 0.001
 )";
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {
@@ -193,6 +200,10 @@ TEST(CaseWriter, KeysTheBundledCasesLeaveAtTheirDefaults) {
                                      "k1 = 1.0e6\nrestitution = 0.85\nratk = 0.7", "model = \"linear_dashpot\"\nkn = 2.0e5\ngamma_n = 300.0");
   expect_round_trip(load_case_from_string(replace(rotary, "restitution = 0.8\nfriction = 0.3", "gamma_n = 200.0\nfriction = 0.3"),
                                           "rotary.toml"));
+  // Lucy's kernel, sized by its cutoff, on the default grid.
+  expect_round_trip(load_case_from_string(
+      replace(kDemEverything, "kernel = \"gaussian\"\nwidth = 0.0025\ncells = [5, 25, 5]", "kernel = \"lucy\"\ncutoff = 0.004"),
+      "lucy.toml"));
 }
 
 TEST(CaseWriter, DoublesAreWrittenExactly) {

@@ -23,10 +23,12 @@ TEST(ObserverRegistry, SoftSphereRunGetsTheTablesItsCaseEnables) {
   f.c.tracers.enabled = true;
   f.c.field.enabled = true;
   f.c.output.stresses = true;
+  f.c.coarse_grain.enabled = true;
   EXPECT_EQ(names(run::make_observers(run::EngineKind::dem, f.context(1e-5), f.at(0.0))),
-            (std::vector<std::string>{"field", "tracers", "stresses", "profiles"}));
+            (std::vector<std::string>{"field", "tracers", "stresses", "coarse_grain", "profiles"}));
   EXPECT_EQ(run::observer_names(run::EngineKind::dem),
-            (std::vector<std::string>{"trajectory", "zone_series", "field", "tracers", "stresses", "profiles"}));
+            (std::vector<std::string>{"trajectory", "zone_series", "field", "tracers", "stresses", "coarse_grain",
+                                      "profiles"}));
 }
 
 TEST(ObserverRegistry, EventDrivenConstitutiveTableBuildsOnTheProfilesAndStresses) {

@@ -1,5 +1,6 @@
 #include "grainflow/config/case_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace grainflow {
@@ -13,6 +14,25 @@ double trajectory_start(const CaseConfig& c) {
 double edmd_trajectory_interval(const CaseConfig& c) {
   if (c.trajectory.interval > 0.0) return c.trajectory.interval;
   return (c.run.duration - trajectory_start(c)) / static_cast<double>(c.trajectory.samples);
+}
+
+double CoarseGrainConfig::kernel_size(double reference_diameter) const {
+  if (kernel == "lucy") return cutoff > 0.0 ? cutoff : std::sqrt(3.0) * reference_diameter;
+  return width > 0.0 ? width : 0.5 * reference_diameter;
+}
+
+// Lucy's (1 + 3q)(1 - q)^3 in 3D: each coordinate's variance is cutoff^2 / 12.
+double CoarseGrainConfig::standard_deviation(double reference_diameter) const {
+  const double size = kernel_size(reference_diameter);
+  return kernel == "lucy" ? size / std::sqrt(12.0) : size;
+}
+
+std::array<int, 3> CoarseGrainConfig::grid(const Vec3& box_length, double reference_diameter) const {
+  std::array<int, 3> out = cells;
+  const double spacing = standard_deviation(reference_diameter);
+  for (int a = 0; a < 3; ++a)
+    if (out[a] <= 0) out[a] = std::max(1, static_cast<int>(std::ceil(box_length[a] / spacing - 1e-9)));
+  return out;
 }
 
 }  // namespace grainflow

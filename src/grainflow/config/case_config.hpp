@@ -221,6 +221,25 @@ struct ZoneSeriesConfig {
   long long samples = 2048;
 };
 
+// [coarse_grain]: density, solid fraction, velocity, kinetic and contact stress on a 3D grid of
+// cells over the box, by MercuryCG's method (observe/coarse_grain_field.hpp), time-averaged;
+// coarse_grained.vti.
+struct CoarseGrainConfig {
+  bool operator==(const CoarseGrainConfig&) const = default;  // the case writer's round-trip test
+  bool enabled = false;
+  std::string kernel = "gaussian";  // "gaussian" or "lucy"
+  double width = 0.0;               // m, the Gaussian's standard deviation; 0 = half the reference diameter
+  double cutoff = 0.0;              // m, Lucy's support radius; 0 = sqrt(3) reference diameters (the same spread)
+  std::array<int, 3> cells{};       // per axis; 0 = cells one standard deviation of the kernel wide
+  double start = -1.0;              // s; < 0: output.average_start
+  double interval = 0.0;            // s between samples; 0: output.profile_interval (else output.interval / 10)
+
+  // The kernel's size (width or cutoff), its standard deviation, and the grid, defaults resolved.
+  double kernel_size(double reference_diameter) const;
+  double standard_deviation(double reference_diameter) const;
+  std::array<int, 3> grid(const Vec3& box_length, double reference_diameter) const;
+};
+
 // One explicitly given particle (init = "file").
 struct InitialParticle {
   bool operator==(const InitialParticle&) const = default;  // the case writer's round-trip test
@@ -250,6 +269,7 @@ struct CaseConfig {
   ZoneSeriesConfig zone_series;
   FieldConfig field;
   TracersConfig tracers;
+  CoarseGrainConfig coarse_grain;
   std::vector<InitialParticle> initial_particles;  // read from particles.file
 };
 

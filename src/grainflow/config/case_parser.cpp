@@ -574,6 +574,42 @@ void read_tracers(TomlReader& top, CaseConfig& c) {
   }
 }
 
+// [coarse_grain]
+void read_coarse_grain(TomlReader& top, CaseConfig& c) {
+  if (!top.has("coarse_grain")) return;
+  TomlReader r = top.table("coarse_grain");
+  auto& g = c.coarse_grain;
+  if (c.engine.kind != "dem")
+    top.fail("coarse_grain", "coarse-grained fields are implemented for the DEM engine only (event-driven runs write "
+                             "strip profiles and stresses.csv)");
+  g.enabled = true;
+  g.kernel = r.string("kernel", g.kernel);
+  if (g.kernel != "gaussian" && g.kernel != "lucy") r.fail("kernel", "must be \"gaussian\" or \"lucy\"");
+  if (g.kernel == "gaussian") {
+    if (r.has("cutoff")) r.fail("cutoff", "belongs to kernel = \"lucy\"; a Gaussian's size is its standard deviation, width");
+    g.width = r.number("width", 0.0);
+    if (g.width < 0.0) r.fail("width", "must be positive (or 0: half the reference diameter)");
+  } else {
+    if (r.has("width")) r.fail("width", "belongs to kernel = \"gaussian\"; Lucy's kernel is sized by its cutoff radius");
+    g.cutoff = r.number("cutoff", 0.0);
+    if (g.cutoff < 0.0) r.fail("cutoff", "must be positive (or 0: sqrt(3) reference diameters)");
+  }
+  if (const toml::node* cells = r.raw("cells")) {
+    const auto* list = cells->as_array();
+    if (!list || list->size() != 3) r.fail("cells", "must be an array of three cell counts [nx, ny, nz]");
+    for (int a = 0; a < 3; ++a) {
+      const auto n = (*list)[static_cast<std::size_t>(a)].value<std::int64_t>();
+      if (!n || *n < 1 || *n > 100000) r.fail("cells", "each count must be an integer in [1, 100000]");
+      g.cells[a] = static_cast<int>(*n);
+    }
+  }
+  g.start = r.number("start", -1.0);
+  if (r.has("start") && g.start < 0.0) r.fail("start", "must not be negative");
+  g.interval = r.number("interval", 0.0);
+  if (g.interval < 0.0) r.fail("interval", "must not be negative (0 = output.profile_interval)");
+  r.reject_unknown_keys();
+}
+
 CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden,
                  ContactSchemas schemas) {
   CaseConfig c;
@@ -598,6 +634,7 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
   read_zone_series(top, c);
   read_field(top, c);
   read_tracers(top, c);
+  read_coarse_grain(top, c);
   top.reject_unknown_keys();
   return c;
 }

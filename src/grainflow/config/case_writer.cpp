@@ -261,6 +261,17 @@ void write_samplers(Out& o, const CaseConfig& c) {
     o.key("start", t.start);
     o.key("interval", t.interval);
   }
+  if (c.coarse_grain.enabled) {
+    const auto& g = c.coarse_grain;
+    o.table("coarse_grain");
+    o.text_key("kernel", g.kernel);
+    if (g.kernel == "lucy") o.key("cutoff", g.cutoff);
+    else o.key("width", g.width);
+    if (g.cells[0] > 0) o.key("cells", "[" + std::to_string(g.cells[0]) + ", " + std::to_string(g.cells[1]) + ", " +
+                                           std::to_string(g.cells[2]) + "]");
+    if (g.start >= 0.0) o.key("start", g.start);
+    o.key("interval", g.interval);
+  }
 }
 
 }  // namespace

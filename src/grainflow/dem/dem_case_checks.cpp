@@ -166,6 +166,29 @@ void validate_dem_case(const CaseConfig& c) {
                                          std::to_string(total - 1) + ")");
     if (c.tracers.interval > 0.0 && c.tracers.interval < d.time_step) fail(c, "tracers.interval", "is shorter than one time step");
   }
+  if (c.coarse_grain.enabled) {
+    const auto& g = c.coarse_grain;
+    const std::string size_key = g.kernel == "lucy" ? "coarse_grain.cutoff" : "coarse_grain.width";
+    const double spread = g.standard_deviation(d.reference_diameter);
+    const Vec3 length = c.domain.hi - c.domain.lo;
+    const std::array<int, 3> cells = g.grid(length, d.reference_diameter);
+    double count = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      const double h = length[a] / cells[a];
+      // A kernel narrower than the cells puts each point into the one cell it lies in: binning, not
+      // coarse graining.
+      if (h > 2.0 * spread)
+        fail(c, "coarse_grain.cells",
+             std::string("cells ") + fmt_number(h) + " m wide along " + static_cast<char>('x' + a) +
+                 " are wider than twice the kernel's standard deviation (" + fmt_number(spread) +
+                 " m): the kernel is not resolved; use more cells or a wider kernel (" + size_key + ")");
+      count *= cells[a];
+    }
+    if (count * 20.0 * 8.0 > 4e9)
+      fail(c, "coarse_grain.cells", "the grid of " + fmt_number(count) + " cells would take " +
+                                        fmt_number(count * 160.0 / 1e9) + " GB; use fewer cells");
+    if (g.interval > 0.0 && g.interval < d.time_step) fail(c, "coarse_grain.interval", "is shorter than one time step");
+  }
   if (c.trajectory.enabled) {
     const auto& t = c.trajectory;
     if (t.window > 0.0 && t.window < d.time_step) fail(c, "trajectory.window", "is shorter than one time step");

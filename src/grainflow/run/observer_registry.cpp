@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "grainflow/observe/coarse_grain_observer.hpp"
 #include "grainflow/observe/collision_stress_observer.hpp"
 #include "grainflow/observe/constitutive_observer.hpp"
 #include "grainflow/observe/contact_stress_observer.hpp"
@@ -54,6 +55,10 @@ constexpr Registered kObservers[] = {
     {"stresses", EngineKind::dem, [](const CaseConfig& c) { return c.output.stresses; },
      [](const observe::RunContext& run, const observe::Frame& start, const std::vector<Made>&) -> Made {
        return std::make_unique<observe::ContactStressObserver>(run, start);
+     }},
+    {"coarse_grain", EngineKind::dem, [](const CaseConfig& c) { return c.coarse_grain.enabled; },
+     [](const observe::RunContext& run, const observe::Frame& start, const std::vector<Made>&) -> Made {
+       return std::make_unique<observe::CoarseGrainObserver>(run, start);
      }},
     {"profiles", EngineKind::dem, [](const CaseConfig&) { return true; },
      [](const observe::RunContext& run, const observe::Frame&, const std::vector<Made>&) -> Made {
