@@ -173,6 +173,24 @@ TEST(CoarseGrainField, PeriodicImagesAndRankSharesGiveTheSameField) {
   }
 }
 
+TEST(CoarseGrainField, APeriodicAxisOfOneCellIsAveragedOver) {
+  // Profiles across a periodic slab: one cell along x and z, the kernel spreads along y only, so
+  // where a particle lies along x and z does not matter, and the totals still hold.
+  const PeriodicBox box = box_of({0, 0, 0}, {10, 6, 10}, {true, false, true});
+  const CoarseGrainKernel kernel{Kind::gaussian, 0.5};
+  CoarseGrainField a(box, {1, 12, 1}, kernel), b(box, {1, 12, 1}, kernel);
+  a.add_particle({0.3, 2.2, 9.1}, 1.0, 0.5, {1, 0, 0});
+  a.add_contact({0.3, 2.2, 9.1}, {0.3, 1.3, 9.5}, {0.1, 1.0, 0.0});
+  b.add_particle({7.7, 2.2, 4.0}, 1.0, 0.5, {1, 0, 0});
+  b.add_contact({7.7, 2.2, 4.0}, {7.7, 1.3, 4.4}, {0.1, 1.0, 0.0});
+  for (std::size_t k = 0; k < a.sums().size(); ++k) EXPECT_NEAR(a.sums()[k], b.sums()[k], 1e-14);
+  EXPECT_NEAR(integral(a, CoarseGrainField::kMass, 1)[0], 1.0, 1e-14);
+  EXPECT_NEAR(integral(a, CoarseGrainField::kContact + 4, 1)[0], 0.9, 1e-14);  // b_y f_y
+  // Along y the weights are the 1D Gaussian's, normalized: cells at 2.25 and 2.75 around x = 2.2.
+  const double near = a.cell_sums(4)[CoarseGrainField::kMass], next = a.cell_sums(5)[CoarseGrainField::kMass];
+  EXPECT_NEAR(next / near, std::exp(-0.5 * (0.55 * 0.55 - 0.05 * 0.05) / 0.25), 1e-12);
+}
+
 TEST(CoarseGrainField, MassBeyondTheBoxOnAWalledAxisIsCountedAsLost) {
   const PeriodicBox box = box_of({0, 0, 0}, {2, 2, 2}, {true, false, true});
   CoarseGrainField field(box, {4, 4, 4}, {Kind::gaussian, 0.2});

@@ -43,6 +43,10 @@ bool CoarseGrainField::spread(const Vec3& x, const double* values, std::size_t o
   auto& axis_cells = axis_scratch_;
   for (int a = 0; a < 3; ++a) {
     axis_cells[a].clear();
+    if (averaged(a)) {  // the coordinate along it is left out
+      axis_cells[a].emplace_back(0, 0.0);
+      continue;
+    }
     const double h = spacing_[a];
     const double u = (x[a] - box_.lo[a]) / h - 0.5;  // in cells, from the first centre
     int first = static_cast<int>(std::ceil(u - reach / h));

@@ -14,7 +14,9 @@
 // point of a branch vector's quadrature), so the fields integrate over the cells to the particle
 // totals exactly: sum rho dV = sum m, sum p dV = sum m v, sum s^c dV = sum b f (the contact virial),
 // on any grid and next to walls, where the kernel is renormalized inside the box (the boundary
-// treatment of Weinhart et al.). Periodic axes wrap the kernel, every image counted. Each MPI rank
+// treatment of Weinhart et al.). Periodic axes wrap the kernel, every image counted. A periodic
+// axis of one cell is averaged over: the kernel spreads along the other axes only (MercuryCG's
+// lower-dimensional coarse graining, e.g. profiles across a chute). Each MPI rank
 // adds its own particles and the contacts it lists; the sums are added over the ranks.
 #pragma once
 
@@ -69,6 +71,7 @@ class CoarseGrainField {
 
   long samples() const { return samples_; }
   const std::array<int, 3>& cells() const { return cells_; }
+  bool averaged(int axis) const { return cells_[axis] == 1 && box_.periodic[axis]; }
   std::size_t cell_count() const { return static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2]; }
   Vec3 spacing() const { return spacing_; }
   Vec3 origin() const { return box_.lo; }
