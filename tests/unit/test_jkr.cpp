@@ -183,3 +183,54 @@ TEST(Jkr, ElasticImpactSticksBelowTheHysteresisSpeedAndReboundsAbove) {
 }
 
 }  // namespace
+
+namespace {
+
+// A bonded pair's small normal oscillations about a0: the curve's slope there (closed form) against
+// a central difference of the force, and the period of m* delta'' = -F(delta) integrated with a
+// step 1e-4 of it (velocity Verlet: period error ~1e-8) against 2 pi sqrt(m* / k0), to 1e-4.
+TEST(Jkr, BondedPairOscillatesAtTheCurvesSlopeAndBoundsTheTimeStep) {
+  const Jkr::Params p = params(1.0, kGamma);
+  const double r = kRadius;
+  const double a0 = Jkr::equilibrium_radius(p, r);
+  const double delta0 = a0 * a0 / (3.0 * r);
+  const double k0 = Jkr::normal_stiffness(p, a0, r);
+  const double h = 1e-6 * delta0;
+  EXPECT_NEAR((force_at(p, delta0 - h, r) - force_at(p, delta0 + h, r)) / (2.0 * h), -k0, 1e-5 * k0);
+  // At zero load dF/da = 2 E* a0^2 / R* and d delta / da = 5 a0 / (3 R*): k0 = 6/5 E* a0.
+  EXPECT_NEAR(k0, 1.2 * p.material.e_star * a0, 1e-12 * k0);
+
+  const double mass = 4.0 / 3.0 * M_PI * r * r * r * kDensity;  // a sphere bonded to a plane
+  const double period = 2.0 * M_PI * std::sqrt(mass / k0);
+  const double dt = 1e-4 * period;
+  double x = delta0 + 1e-3 * delta0, v = 0.0, a = -force_at(p, x, r) / mass;
+  double previous_v = v, t = 0.0, crossing = -1.0;
+  int crossings = 0;
+  while (crossings < 3 && t < 10.0 * period) {  // v changes sign at each turning point
+    v += 0.5 * dt * a;
+    x += dt * v;
+    a = -force_at(p, x, r) / mass;
+    v += 0.5 * dt * a;
+    t += dt;
+    if (previous_v * v < 0.0) {
+      ++crossings;
+      if (crossings == 1) crossing = t;
+      if (crossings == 3) EXPECT_NEAR(t - crossing, period, 1e-4 * period);
+    }
+    previous_v = v;
+  }
+  EXPECT_EQ(crossings, 3);
+
+  // The time step resolves the bonded pair's half period in collision_steps.
+  const HeadOnImpact pair{mass, r, 0.01};
+  EXPECT_DOUBLE_EQ(Jkr::bonded_half_period(p, pair), 0.5 * period);  // no friction: the normal mode
+  EXPECT_LE(Jkr::time_step(p, pair, 40), 0.5 * period / 40.0);
+  const Jkr::Params frictional{HertzMindlin::make(kE, kNu, 1.0, 0.5, std::numeric_limits<double>::infinity(), 0.0), kGamma};
+  const double tangential = M_PI * std::sqrt(2.0 / 7.0 * mass / (8.0 * frictional.material.g_star * a0));
+  EXPECT_DOUBLE_EQ(Jkr::bonded_half_period(frictional, pair), std::min(0.5 * period, tangential));
+  // Without adhesion the bound is Hertz–Mindlin's.
+  const Jkr::Params dry = params(1.0, 0.0);
+  EXPECT_DOUBLE_EQ(Jkr::time_step(dry, pair, 40), HertzMindlin::time_step(dry.material, pair, 40));
+}
+
+}  // namespace

@@ -116,8 +116,32 @@ BinaryContact Jkr::integrate_impact(const Params& p, const HeadOnImpact& impact)
   return {kNever, 0.0};
 }
 
+double Jkr::equilibrium_radius(const Params& p, double effective_radius) {
+  const double w = 2.0 * p.surface_energy;
+  return std::cbrt(9.0 * M_PI * w * effective_radius * effective_radius / (2.0 * p.material.e_star));
+}
+
+// F(a) = 4 E* a^3 / (3R) - sqrt(8 pi w E* a^3), delta(a) = a^2 / R - sqrt(2 pi w a / E*).
+double Jkr::normal_stiffness(const Params& p, double a, double effective_radius) {
+  const double e = p.material.e_star, w = 2.0 * p.surface_energy, r = effective_radius;
+  const double df_da = 4.0 * e * a * a / r - 1.5 * std::sqrt(8.0 * M_PI * w * e * a);
+  const double ddelta_da = 2.0 * a / r - 0.5 * std::sqrt(2.0 * M_PI * w / (e * a));
+  return df_da / ddelta_da;
+}
+
+double Jkr::bonded_half_period(const Params& p, const HeadOnImpact& pair) {
+  if (!(p.surface_energy > 0.0)) return std::numeric_limits<double>::infinity();
+  const double a0 = equilibrium_radius(p, pair.effective_radius);
+  const double normal = M_PI * std::sqrt(pair.effective_mass / normal_stiffness(p, a0, pair.effective_radius));
+  // Two equal solid spheres: 1 / m_t = 1 / m* + R*^2 / I* with the contact arm R = 2 R* and
+  // I* = I / 2 = m R^2 / 5 = (2 m*) (2 R*)^2 / 5, so m_t = 2/7 m*.
+  const double tangential_mass = 2.0 / 7.0 * pair.effective_mass;
+  const double tangential = M_PI * std::sqrt(tangential_mass / (8.0 * p.material.g_star * a0));
+  return p.material.friction > 0.0 ? std::min(normal, tangential) : normal;
+}
+
 double Jkr::time_step(const Params& p, const HeadOnImpact& pair, int collision_steps) {
-  return HertzMindlin::time_step(p.material, pair, collision_steps);
+  return std::min(HertzMindlin::time_step(p.material, pair, collision_steps), bonded_half_period(p, pair) / collision_steps);
 }
 
 double Jkr::sticking_speed(const Params& p, const HeadOnImpact& impact) {
@@ -135,6 +159,9 @@ std::vector<CheckLine> Jkr::describe(const Params& p, const HeadOnImpact& impact
   lines.push_back({"surface energy", fmt::format("{:.6g} J/m^2: pull-off force {:.6g} N, neck breaks at overlap {:.4g} m",
                                                  p.surface_energy, pull_off_force(p, impact.effective_radius),
                                                  detach_overlap(p, impact.effective_radius))});
+  if (p.surface_energy > 0.0)
+    lines.push_back({"bonded pair", fmt::format("a0 = {:.4g} m, half period of its oscillations {:.6g} s (the time step resolves it too)",
+                                                equilibrium_radius(p, impact.effective_radius), bonded_half_period(p, impact))});
   lines.push_back({"adhesive impact", std::isinf(b.duration)
                                           ? fmt::format("sticks at {:.6g} m/s (elastic sticking speed {:.6g} m/s)",
                                                         impact.speed, sticking_speed(p, impact))

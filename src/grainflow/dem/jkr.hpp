@@ -145,8 +145,18 @@ struct Jkr {
   // speed's ratio; e = 0 and an infinite duration when the spheres stick), cached.
   static BinaryContact binary_contact(const Params& p, const HeadOnImpact& impact);
   static BinaryContact integrate_impact(const Params& p, const HeadOnImpact& impact);
-  // Hertz–Mindlin's bound (the contact's duration / collision_steps, a fifth of the Rayleigh time).
+  // Hertz–Mindlin's bound (the contact's duration / collision_steps, a fifth of the Rayleigh time),
+  // and half a period of a bonded pair's oscillations / collision_steps: strong adhesion holds
+  // contacts at a0, where they are stiffer than any impact's Hertz contact.
   static double time_step(const Params& p, const HeadOnImpact& pair, int collision_steps);
+  // The radius where the adhesive force vanishes, a0^3 = 9 pi w R*^2 / (2 E*) (overlap a0^2 / (3 R*)).
+  static double equilibrium_radius(const Params& p, double effective_radius);
+  // N/m, dF/d delta of the JKR curve at a (its stable branch).
+  static double normal_stiffness(const Params& p, double a, double effective_radius);
+  // s, half the period of a bonded pair's small oscillations about a0, the smaller of the normal
+  // one (m* on dF/d delta) and the tangential one (Mindlin's 8 G* a0 on m* / (1 + m* R*^2 / I*),
+  // 2/7 m* for equal solid spheres, as sliding and rolling couple).
+  static double bonded_half_period(const Params& p, const HeadOnImpact& pair);
   static double loading_stiffness(const Params& p, const HeadOnImpact& impact) {
     return HertzMindlin::loading_stiffness(p.material, impact);
   }
