@@ -51,7 +51,8 @@ TEST(CoarseGrainKernel, LucyStandardDeviationIsCutoffOverRootTwelve) {
   EXPECT_NEAR(lucy.shape(1.999 * 1.999), 0.0, 1e-8);
   EXPECT_EQ(lucy.shape(4.0), 0.0);
   const CoarseGrainKernel gauss{Kind::gaussian, 0.5};
-  EXPECT_DOUBLE_EQ(gauss.shape(0.25), std::exp(-0.5));
+  EXPECT_DOUBLE_EQ(gauss.shape(0.25), std::exp(-0.5) - std::exp(-4.5));  // shifted to end at zero
+  EXPECT_NEAR(gauss.shape(1.4999 * 1.4999), 0.0, 1e-5);
   EXPECT_DOUBLE_EQ(gauss.reach(), 1.5);
   EXPECT_EQ(gauss.shape(1.5 * 1.5), 0.0);
 }
@@ -186,9 +187,9 @@ TEST(CoarseGrainField, APeriodicAxisOfOneCellIsAveragedOver) {
   for (std::size_t k = 0; k < a.sums().size(); ++k) EXPECT_NEAR(a.sums()[k], b.sums()[k], 1e-14);
   EXPECT_NEAR(integral(a, CoarseGrainField::kMass, 1)[0], 1.0, 1e-14);
   EXPECT_NEAR(integral(a, CoarseGrainField::kContact + 4, 1)[0], 0.9, 1e-14);  // b_y f_y
-  // Along y the weights are the 1D Gaussian's, normalized: cells at 2.25 and 2.75 around x = 2.2.
+  // Along y the weights are the 1D (shifted) Gaussian's, normalized: cells at 2.25 and 2.75 around y = 2.2.
   const double near = a.cell_sums(4)[CoarseGrainField::kMass], next = a.cell_sums(5)[CoarseGrainField::kMass];
-  EXPECT_NEAR(next / near, std::exp(-0.5 * (0.55 * 0.55 - 0.05 * 0.05) / 0.25), 1e-12);
+  EXPECT_NEAR(next / near, kernel.gaussian_factor(0.55 * 0.55) / kernel.gaussian_factor(0.05 * 0.05), 1e-12);
 }
 
 TEST(CoarseGrainField, MassBeyondTheBoxOnAWalledAxisIsCountedAsLost) {

@@ -32,8 +32,10 @@
 
 namespace grainflow::observe {
 
-// The kernel's shape: a Gaussian of standard deviation `width` cut off at 3 widths, or Lucy's
-// polynomial (1 + 3q)(1 - q)^3, q = r / cutoff, with compact support (Lucy 1977).
+// The kernel's shape: a Gaussian of standard deviation `width` cut off at 3 widths and shifted
+// down by its value there (e^-4.5 = 1.1 % of the peak) so that it vanishes continuously (on the
+// grid, along each axis: the product of its 1D factors), or Lucy's polynomial (1 + 3q)(1 - q)^3,
+// q = r / cutoff, with compact support (Lucy 1977).
 struct CoarseGrainKernel {
   enum class Kind { gaussian, lucy };
   Kind kind = Kind::gaussian;
@@ -43,6 +45,8 @@ struct CoarseGrainKernel {
   double reach() const { return kind == Kind::gaussian ? kGaussianCutoff * width : width; }
   // The kernel's value at squared distance r2, up to its normalization (the grid normalizes it).
   double shape(double r2) const;
+  // The Gaussian's factor along one axis at squared distance d2 (the grid multiplies three).
+  double gaussian_factor(double d2) const;
   // The standard deviation of one coordinate under the kernel (the Gaussian's untruncated; Lucy's
   // c / sqrt(12)): what to compare two kernels' resolutions by.
   double standard_deviation() const;
@@ -103,7 +107,7 @@ class CoarseGrainField {
   long samples_ = 0;
   double lost_mass_ = 0.0;
   std::vector<std::pair<std::size_t, double>> scratch_;  // the cells of one spread and their weights
-  std::array<std::vector<std::pair<int, double>>, 3> axis_scratch_;  // per axis: cell, squared distance
+  std::array<std::vector<std::pair<int, double>>, 3> axis_scratch_;  // per axis: cell, Gaussian factor or squared distance
 };
 
 // The time-averaged fields of one cell.
