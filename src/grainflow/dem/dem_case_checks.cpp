@@ -24,6 +24,8 @@ using case_checks::fmt_number;
 constexpr double kMinStepsPerContact = 5.0;
 // Random placement with radius expansion cannot reach dense packings; 0.5 leaves room to expand.
 constexpr double kMaxRandomSolidsFraction = 0.5;
+// A coarse-graining cell's sums: mass, volume, momentum, sum m v v, contact stress (20 doubles).
+constexpr double kCoarseGrainBytesPerCell = 20 * 8;
 
 }  // namespace
 
@@ -185,9 +187,10 @@ void validate_dem_case(const CaseConfig& c) {
                  " m): the kernel is not resolved; use more cells or a wider kernel (" + size_key + ")");
       count *= cells[a];
     }
-    if (count * 20.0 * 8.0 > 4e9)
-      fail(c, "coarse_grain.cells", "the grid of " + fmt_number(count) + " cells would take " +
-                                        fmt_number(count * 160.0 / 1e9) + " GB; use fewer cells");
+    const double bytes = count * kCoarseGrainBytesPerCell;
+    if (bytes > 4e9)
+      fail(c, "coarse_grain.cells", "the grid of " + fmt_number(count) + " cells would take " + fmt_number(bytes / 1e9) +
+                                        " GB; use fewer cells");
     if (g.interval > 0.0 && g.interval < d.time_step) fail(c, "coarse_grain.interval", "is shorter than one time step");
   }
   if (c.trajectory.enabled) {

@@ -147,7 +147,7 @@ struct Jkr {
   static BinaryContact integrate_impact(const Params& p, const HeadOnImpact& impact);
   // Hertz–Mindlin's bound (the contact's duration / collision_steps, a fifth of the Rayleigh time),
   // and half a period of a bonded pair's oscillations / collision_steps: strong adhesion holds
-  // contacts at a0, where they are stiffer than any impact's Hertz contact.
+  // contacts at a0, a wider contact, and so a stiffer one, than a gentle impact's.
   static double time_step(const Params& p, const HeadOnImpact& pair, int collision_steps);
   // The radius where the adhesive force vanishes, a0^3 = 9 pi w R*^2 / (2 E*) (overlap a0^2 / (3 R*)).
   static double equilibrium_radius(const Params& p, double effective_radius);

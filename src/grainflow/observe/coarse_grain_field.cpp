@@ -122,12 +122,6 @@ void CoarseGrainField::add_contact(const Vec3& x_i, const Vec3& from, const Vec3
   for (int k = 0; k < n; ++k) spread(from + ((k + 0.5) / n) * b, values, kContact, 9);
 }
 
-void CoarseGrainField::add(const CoarseGrainField& other) {
-  if (other.sums_.size() != sums_.size()) throw std::invalid_argument("coarse-graining grids differ");
-  for (std::size_t k = 0; k < sums_.size(); ++k) sums_[k] += other.sums_[k];
-  lost_mass_ += other.lost_mass_;
-}
-
 void CoarseGrainField::clear_sums() {
   std::fill(sums_.begin(), sums_.end(), 0.0);
   lost_mass_ = 0.0;

@@ -22,7 +22,6 @@
 
 #include <array>
 #include <cstddef>
-#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -50,7 +49,6 @@ struct CoarseGrainKernel {
   // The standard deviation of one coordinate under the kernel (the Gaussian's untruncated; Lucy's
   // c / sqrt(12)): what to compare two kernels' resolutions by.
   double standard_deviation() const;
-  std::string_view name() const { return kind == Kind::gaussian ? "gaussian" : "lucy"; }
 };
 
 class CoarseGrainField {
@@ -67,8 +65,6 @@ class CoarseGrainField {
   void add_contact(const Vec3& x_i, const Vec3& from, const Vec3& force);
   // The point samples so far become one time sample: the averages count it.
   void close_sample() { ++samples_; }
-  // Adds another field's sums (the same grid): several ranks' shares, or a sample in parts.
-  void add(const CoarseGrainField& other);
   void clear_sums();
   // Every rank's sums added (collective): each rank then holds the whole box's.
   void sum_over_ranks(const RankReduce& ranks);
@@ -83,7 +79,7 @@ class CoarseGrainField {
   const CoarseGrainKernel& kernel() const { return kernel_; }
   // The summed values of cell k (x fastest), kValues of them, per cell volume: sums over samples.
   const double* cell_sums(std::size_t k) const { return &sums_[k * kValues]; }
-  std::vector<double>& sums() { return sums_; }
+  const std::vector<double>& sums() const { return sums_; }
   // Mass or contact points whose kernel reached no cell (outside the box on a non-periodic axis).
   double lost_mass() const { return lost_mass_; }
 

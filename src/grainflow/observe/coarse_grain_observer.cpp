@@ -48,7 +48,6 @@ void CoarseGrainObserver::sample(const Frame& now) {
 void CoarseGrainObserver::write(const Frame&, OutputSink& out) {
   CoarseGrainField whole = field_;
   whole.sum_over_ranks(run_.ranks);
-  const double size = run_.c->coarse_grain.kernel_size(run_.reference_diameter);
   if (whole.samples() == 0)
     out.warnings->push_back("coarse_grained.vti: no sample after coarse_grain.start; its fields are zero");
   if (whole.lost_mass() > 0.0 && whole.samples() > 0)
@@ -78,7 +77,7 @@ void CoarseGrainObserver::write(const Frame&, OutputSink& out) {
                 {{"samples", static_cast<double>(whole.samples())},
                  {"first_sample_time", first_},
                  {"last_sample_time", last_},
-                 {std::string("kernel_") + (whole.kernel().kind == CoarseGrainKernel::Kind::lucy ? "cutoff" : "width"), size},
+                 {std::string("kernel_") + (whole.kernel().kind == CoarseGrainKernel::Kind::lucy ? "cutoff" : "width"), whole.kernel().width},
                  {"kernel_standard_deviation", whole.kernel().standard_deviation()}});
 }
 
