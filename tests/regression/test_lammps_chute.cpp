@@ -24,7 +24,7 @@ TEST(LammpsChute, KineticEnergiesAfter100StepsMatchLammps) {
   std::visit(
       [&](auto& e) {
         for (int step = 0; step < 100; ++step) e.step();
-        const auto global = observe::sample_global(e.state().particles, 2);
+        const auto global = observe::sample_global(e.state().particles, 2, 3);
         EXPECT_NEAR(global.kinetic_energy, 784292.08, 784292.08 * 1e-6);
         EXPECT_NEAR(global.rotational_energy, 1571.0968, 1571.0968 * 1e-6);
       },

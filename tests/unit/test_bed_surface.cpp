@@ -46,7 +46,7 @@ TEST(BedSurface, SimpleCubicStackHeightAndBulkFraction) {
   const int n = 5, layers = 6;
   const double area = (n * kD) * (n * kD);
   const auto p = cubic_stack(n, layers, 0.0);
-  const BedSurface bed = measure_bed_surface(p, 1, 0.0, area, kD, {});
+  const BedSurface bed = measure_bed_surface(p, 3, 1, 0.0, area, kD, {});
   ASSERT_GT(slice_cover(0.8, 1.0), 0.1);
   EXPECT_NEAR(bed.height, layers * kD, 1e-9 * kD);
   EXPECT_EQ(bed.ballistic, 0);
@@ -62,7 +62,7 @@ TEST(BedSurface, GrainsInFlightAboveAGapAreExcluded) {
   add(p, {0.5 * kD, layers * kD + 3.0 * kD, 0.5 * kD});
   add(p, {2.5 * kD, layers * kD + 4.5 * kD, 1.5 * kD});
   add(p, {3.5 * kD, layers * kD + 6.0 * kD, 3.5 * kD});
-  const BedSurface bed = measure_bed_surface(p, 1, 0.0, area, kD, {});
+  const BedSurface bed = measure_bed_surface(p, 3, 1, 0.0, area, kD, {});
   EXPECT_EQ(bed.ballistic, 3);
   EXPECT_NEAR(bed.height, layers * kD, 1e-9 * kD);
   EXPECT_NEAR(bed.bulk_solids_fraction, M_PI / 6.0, 1e-9);
@@ -71,7 +71,7 @@ TEST(BedSurface, GrainsInFlightAboveAGapAreExcluded) {
   // threshold: it is neither ballistic nor raising the surface.
   auto q = cubic_stack(n, layers, 0.0);
   add(q, {kD, (layers - 1) * kD + kR + kD / std::sqrt(2.0), kD});
-  const BedSurface resting = measure_bed_surface(q, 1, 0.0, area, kD, {});
+  const BedSurface resting = measure_bed_surface(q, 3, 1, 0.0, area, kD, {});
   EXPECT_EQ(resting.ballistic, 0);
   EXPECT_NEAR(resting.height, bed.height, 1e-12);
 }
@@ -80,7 +80,7 @@ TEST(BedSurface, HeightIsMeasuredFromTheFloor) {
   const int n = 4, layers = 3;
   const double area = (n * kD) * (n * kD), floor = -0.0042;
   const auto p = cubic_stack(n, layers, floor);
-  const BedSurface bed = measure_bed_surface(p, 1, floor, area, kD, {});
+  const BedSurface bed = measure_bed_surface(p, 3, 1, floor, area, kD, {});
   EXPECT_NEAR(bed.height, layers * kD, 1e-9 * kD);
 }
 
@@ -92,7 +92,7 @@ TEST(BedSurface, ThresholdsMoveTheSurface) {
   const auto p = cubic_stack(n, layers, 0.0);
   BedSurfaceThresholds t;
   t.surface_fraction = 0.5;
-  const BedSurface bed = measure_bed_surface(p, 1, 0.0, area, kD, t);
+  const BedSurface bed = measure_bed_surface(p, 3, 1, 0.0, area, kD, t);
   ASSERT_GT(slice_cover(0.4, 0.6), 0.5);
   ASSERT_LT(slice_cover(0.6, 0.8), 0.5);
   EXPECT_NEAR(bed.height, (layers - 1) * kD + 1.6 * kR, 1e-9 * kD);

@@ -446,7 +446,7 @@ TEST(CaseLoader, CoarseGrainKeysAreChecked) {
   EXPECT_TRUE(c.coarse_grain.enabled);
   // Defaults from the diameter, whatever the units: a Gaussian of half a diameter, cells of one width.
   EXPECT_DOUBLE_EQ(c.coarse_grain.kernel_size(0.003), 0.0015);
-  EXPECT_EQ(c.coarse_grain.grid({0.02, 0.05, 0.02}, 0.003), (std::array<int, 3>{14, 34, 14}));
+  EXPECT_EQ(c.coarse_grain.grid({0.02, 0.05, 0.02}, 0.003, 3), (std::array<int, 3>{14, 34, 14}));
   expect_input_error(with + "kernel = \"box\"\n", "coarse_grain.kernel", "must be");
   expect_input_error(with + "cutoff = 0.004\n", "coarse_grain.cutoff", "belongs to kernel = \"lucy\"");
   expect_input_error(with + "kernel = \"lucy\"\nwidth = 0.004\n", "coarse_grain.width", "belongs to kernel = \"gaussian\"");

@@ -104,10 +104,10 @@ void expect_close(double a, double b, const char* what) {
 
 TEST(RankReduce, HalvesWithGhostsGiveTheWholeBedsGlobalSample) {
   const ParticleStore all = bed();
-  const GlobalSample whole = sample_global(all, 1);
+  const GlobalSample whole = sample_global(all, 1, 3);
   TwoRanks ranks;
   GlobalSample parts[2];
-  ranks.run([&](int rank, RankReduce reduce) { parts[rank] = sample_global(half(all, rank), 1, reduce); });
+  ranks.run([&](int rank, RankReduce reduce) { parts[rank] = sample_global(half(all, rank), 1, 3, reduce); });
   for (const GlobalSample& g : parts) {
     expect_close(g.mass, whole.mass, "mass");
     expect_close(g.kinetic_energy, whole.kinetic_energy, "kinetic energy");
@@ -120,12 +120,12 @@ TEST(RankReduce, HalvesWithGhostsGiveTheWholeBedsGlobalSample) {
 TEST(RankReduce, HalvesWithGhostsGiveTheWholeBedsSurface) {
   const ParticleStore all = bed();
   const BedSurfaceThresholds thresholds;
-  const BedSurface whole = measure_bed_surface(all, 1, 0.0, kL * kL, kD, thresholds);
+  const BedSurface whole = measure_bed_surface(all, 3, 1, 0.0, kL * kL, kD, thresholds);
   ASSERT_GT(whole.height, kD);
   TwoRanks ranks;
   BedSurface parts[2];
   ranks.run([&](int rank, RankReduce reduce) {
-    parts[rank] = measure_bed_surface(half(all, rank), 1, 0.0, kL * kL, kD, thresholds, reduce);
+    parts[rank] = measure_bed_surface(half(all, rank), 3, 1, 0.0, kL * kL, kD, thresholds, reduce);
   });
   for (const BedSurface& b : parts) {
     expect_close(b.height, whole.height, "height");

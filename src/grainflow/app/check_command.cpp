@@ -90,8 +90,8 @@ void print_check(const CaseConfig& c, std::ostream& out) {
   out << fmt::format("case {}: valid\n", c.path);
   out << fmt::format("  engine                      dem, {} moving + {} fixed particles\n", d.moving_particles, d.frozen_particles);
   for (const auto& s : c.species)
-    out << fmt::format("  species {:<18}  d = {:.6g} m, rho = {:.6g} kg/m^3, mass = {:.6g} kg, count = {}{}\n", s.name,
-                       s.diameter, s.density, s.mass(), s.count, s.frozen ? " (frozen)" : "");
+    out << fmt::format("  species {:<18}  d = {:.6g} m, rho = {:.6g} kg/m^{}, mass = {:.6g} kg, count = {}{}\n", s.name,
+                       s.diameter, s.density, c.engine.dimension, s.mass(c.engine.dimension), s.count, s.frozen ? " (frozen)" : "");
   out << fmt::format("  contact model               {}\n", d.model);
   for (const auto& line : d.law_lines) out << fmt::format("  {:<28}{}\n", line.label, line.value);
   out << fmt::format("  contact duration (binary)   {:.6g} s  (reference species '{}', m = {:.6g} kg)\n", d.contact_duration,

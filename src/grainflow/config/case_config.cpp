@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grainflow/core/ball_measure.hpp"
+
 namespace grainflow {
 
-double SpeciesConfig::mass() const { return M_PI / 6.0 * diameter * diameter * diameter * density; }
+double SpeciesConfig::mass(int dimension) const { return ball_measure(dimension, 0.5 * diameter) * density; }
 
 double trajectory_start(const CaseConfig& c) {
   return c.trajectory.start >= 0.0 ? c.trajectory.start : c.output.average_start;
@@ -21,17 +23,21 @@ double CoarseGrainConfig::kernel_size(double reference_diameter) const {
   return width > 0.0 ? width : 0.5 * reference_diameter;
 }
 
-// Lucy's (1 + 3q)(1 - q)^3 in 3D: each coordinate's variance is cutoff^2 / 12.
-double CoarseGrainConfig::standard_deviation(double reference_diameter) const {
-  const double size = kernel_size(reference_diameter);
-  return kernel == "lucy" ? size / std::sqrt(12.0) : size;
+double lucy_standard_deviation(double cutoff, int dimension) {
+  return cutoff * (dimension == 2 ? std::sqrt(5.0 / 56.0) : std::sqrt(1.0 / 12.0));
 }
 
-std::array<int, 3> CoarseGrainConfig::grid(const Vec3& box_length, double reference_diameter) const {
+double CoarseGrainConfig::standard_deviation(double reference_diameter, int dimension) const {
+  const double size = kernel_size(reference_diameter);
+  return kernel == "lucy" ? lucy_standard_deviation(size, dimension) : size;
+}
+
+std::array<int, 3> CoarseGrainConfig::grid(const Vec3& box_length, double reference_diameter, int dimension) const {
   std::array<int, 3> out = cells;
-  const double spacing = standard_deviation(reference_diameter);
+  const double spacing = standard_deviation(reference_diameter, dimension);
   for (int a = 0; a < 3; ++a)
     if (out[a] <= 0) out[a] = std::max(1, static_cast<int>(std::ceil(box_length[a] / spacing - 1e-9)));
+  if (dimension == 2 && cells[2] <= 0) out[2] = 1;
   return out;
 }
 

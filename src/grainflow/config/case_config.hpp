@@ -38,14 +38,14 @@ struct SpeciesConfig {
   bool operator==(const SpeciesConfig&) const = default;  // the case writer's round-trip test
   std::string name;
   double diameter = 0.0;        // m
-  double density = 0.0;         // kg/m^3
+  double density = 0.0;         // kg/m^3 (kg/m^2 in 2D)
   std::int64_t count = 0;       // particles placed by [particles].init
   bool frozen = false;          // fixed in place, felt by others (e.g. a rough chute base)
   double youngs_modulus = 0.0;  // Pa, optional: for the Hertz-equivalent K1 (eqs. 2-5-5..2-5-9)
   double poisson_ratio = -1.0;  // optional, with youngs_modulus
   std::optional<Vec3> position; // m: the one particle of this species starts here (init = random;
                                 // e.g. Lan's large sphere at the centre of the floor, section 5.2)
-  double mass() const;          // kg, one sphere
+  double mass(int dimension) const;  // kg, one sphere (3D) or disc (2D: density per area)
 };
 
 struct ParticlesConfig {
@@ -235,10 +235,15 @@ struct CoarseGrainConfig {
   double interval = 0.0;            // s between samples; 0: output.profile_interval (else output.interval / 10)
 
   // The kernel's size (width or cutoff), its standard deviation, and the grid, defaults resolved.
+  // In 2D the kernel spreads over the x-y plane and the grid has one cell along z.
   double kernel_size(double reference_diameter) const;
-  double standard_deviation(double reference_diameter) const;
-  std::array<int, 3> grid(const Vec3& box_length, double reference_diameter) const;
+  double standard_deviation(double reference_diameter, int dimension) const;
+  std::array<int, 3> grid(const Vec3& box_length, double reference_diameter, int dimension) const;
 };
+
+// The standard deviation of one coordinate under Lucy's kernel (1 + 3q)(1 - q)^3, q = r / cutoff,
+// over a ball of that cutoff: <r^2> is c^2 / 4 in 3D and 5 c^2 / 28 in 2D, shared by the coordinates.
+double lucy_standard_deviation(double cutoff, int dimension);
 
 // One explicitly given particle (init = "file").
 struct InitialParticle {

@@ -6,6 +6,7 @@
 namespace grainflow::dem {
 
 double BumpLattice::hole_radius() const {
+  if (planar) return 0.5 * line_spacing();
   const double a = column_spacing, b = row_spacing;
   if (!triangular) return 0.5 * std::sqrt(a * a + b * b);
   // Circumradius of the triangle (0,0), (a,0), (a/2,b).
@@ -13,6 +14,7 @@ double BumpLattice::hole_radius() const {
 }
 
 double BumpLattice::closest_bumps() const {
+  if (planar) return line_spacing();
   const double a = column_spacing, b = row_spacing;
   if (!triangular) return std::min(a, b);
   return std::min(a, std::sqrt(0.25 * a * a + b * b));
@@ -34,6 +36,11 @@ BumpLattice bump_lattice(const CaseConfig& c, int face) {
   // A shifted-row lattice only closes across a periodic seam with an even number of rows.
   if (l.triangular && c.domain.periodic(l.axis_b) && l.rows % 2 == 1) l.rows += (l.rows * row < length_b ? 1 : -1);
   l.rows = std::max(l.rows, 1);
+  if (c.engine.dimension == 2) {
+    l.planar = true;
+    l.triangular = false;  // a single row has no shifted rows
+    (l.axis_a == 2 ? l.columns : l.rows) = 1;
+  }
   l.column_spacing = length_a / l.columns;
   l.row_spacing = length_b / l.rows;
   return l;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "grainflow/config/case_checks.hpp"
+#include "grainflow/core/ball_measure.hpp"
 #include "grainflow/dem/bump_lattice.hpp"
 #include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
@@ -27,11 +28,26 @@ constexpr double kMaxRandomSolidsFraction = 0.5;
 // A coarse-graining cell's sums: mass, volume, momentum, sum m v v, contact stress (20 doubles).
 constexpr double kCoarseGrainBytesPerCell = 20 * 8;
 
+// Discs (2D) move in the x-y plane: nothing may push them off it.
+void validate_planar(const CaseConfig& c) {
+  if (c.domain.faces[4] != FaceKind::periodic || c.domain.faces[5] != FaceKind::periodic)
+    fail(c, "domain.boundary", "in 2D (discs in the x-y plane) z must be \"periodic\": there are no walls along z");
+  if (c.gravity.z != 0.0) fail(c, "gravity.vector", "in 2D (discs in the x-y plane) the z component must be 0");
+  if (c.drive.enabled && c.drive.amplitude.z != 0.0)
+    fail(c, "drive.amplitude", "in 2D (discs in the x-y plane) the z component must be 0");
+  for (int f = 0; f < 4; ++f) {
+    const std::string wall = std::string("walls.") + kFaceNames[f];
+    if (c.walls[f].velocity.z != 0.0) fail(c, wall + ".velocity", "in 2D (discs in the x-y plane) the z component must be 0");
+    if (c.domain.faces[f] == FaceKind::bumpy && c.walls[f].lattice == "triangular")
+      fail(c, wall + ".lattice", "in 2D a bumpy wall is one row of half-discs: \"triangular\" has no meaning");
+  }
+}
+
 }  // namespace
 
 void validate_dem_case(const CaseConfig& c) {
-  if (c.engine.dimension != 3)
-    fail(c, "engine.dimension", "the DEM engine simulates spheres in 3D; dimension = 2 is not available yet");
+  const int dim = c.engine.dimension;
+  if (dim == 2) validate_planar(c);
   visit_contact_law(c.contact.model, [&]<ContactLaw Law>() {
     if (const auto problem = Law::species_problem(c.species)) fail(c, "species." + problem->key, problem->reason);
   });
@@ -48,7 +64,7 @@ void validate_dem_case(const CaseConfig& c) {
   }
   // A periodic width shorter than two cutoffs is searched for every image within reach, up to
   // kMaxImage box lengths: so at least half a cutoff.
-  for (int axis = 0; axis < 3; ++axis) {
+  for (int axis = 0; axis < dim; ++axis) {
     if (!c.domain.periodic(axis)) continue;
     const double needed = (d.max_diameter + d.skin) / PeriodicBox::kMaxImage;
     if (c.domain.length(axis) < needed)
@@ -82,7 +98,7 @@ void validate_dem_case(const CaseConfig& c) {
     double placed_diameter = 0.0;
     for (const auto& species : c.species)
       if (!species.position && species.count > 0) placed_diameter = std::max(placed_diameter, species.diameter);
-    for (int axis = 0; axis < 3; ++axis) {
+    for (int axis = 0; axis < dim; ++axis) {
       if (lo[axis] < c.domain.lo[axis] || hi[axis] > c.domain.hi[axis])
         fail(c, "particles.region_lo", "the placement region must lie inside the domain");
       // Along a periodic axis centres go anywhere (no face to keep clear of).
@@ -91,10 +107,10 @@ void validate_dem_case(const CaseConfig& c) {
              "the placement region must be wider than the largest diameter placed at random on every bounded axis");
       if (!(hi[axis] > lo[axis])) fail(c, "particles.region_hi", "the placement region must have a positive extent");
     }
-    double volume = 1.0;
-    for (int axis = 0; axis < 3; ++axis) volume *= hi[axis] - lo[axis];
+    double volume = 1.0;  // an area in 2D
+    for (int axis = 0; axis < dim; ++axis) volume *= hi[axis] - lo[axis];
     double solids = 0.0;
-    for (const auto& s : c.species) solids += s.count * M_PI / 6.0 * s.diameter * s.diameter * s.diameter;
+    for (const auto& s : c.species) solids += s.count * ball_measure(dim, 0.5 * s.diameter);
     if (c.particles.init == "random" && solids / volume > kMaxRandomSolidsFraction)
       fail(c, "species.count", "the particles fill " + std::to_string(solids / volume) +
                                    " of the placement region; random placement needs at most " +
@@ -102,7 +118,7 @@ void validate_dem_case(const CaseConfig& c) {
     if (c.particles.init == "lattice") {
       const double spacing = c.particles.lattice_spacing * d.max_diameter;
       double sites = 1;  // counted in double: a huge region must not overflow an integer
-      for (int axis = 0; axis < 3; ++axis) sites *= std::floor((hi[axis] - lo[axis]) / spacing);
+      for (int axis = 0; axis < dim; ++axis) sites *= std::floor((hi[axis] - lo[axis]) / spacing);
       long total = 0;
       for (const auto& s : c.species) total += s.count;
       if (static_cast<double>(total) > sites)
@@ -112,7 +128,7 @@ void validate_dem_case(const CaseConfig& c) {
   } else {
     for (std::size_t i = 0; i < c.initial_particles.size(); ++i) {
       const auto& p = c.initial_particles[i];
-      for (int axis = 0; axis < 3; ++axis) {
+      for (int axis = 0; axis < dim; ++axis) {
         const bool closed_lo = c.domain.faces[axis * 2] != FaceKind::open && !c.domain.periodic(axis);
         const bool closed_hi = c.domain.faces[axis * 2 + 1] != FaceKind::open && !c.domain.periodic(axis);
         if ((closed_lo && p.position[axis] < c.domain.lo[axis]) || (closed_hi && p.position[axis] > c.domain.hi[axis]))
@@ -146,7 +162,7 @@ void validate_dem_case(const CaseConfig& c) {
     if (s.position) {
       if (c.particles.init != "random")
         fail(c, "species.position", "species '" + s.name + "': a fixed start position needs particles.init = \"random\"");
-      for (int axis = 0; axis < 3; ++axis)
+      for (int axis = 0; axis < dim; ++axis)
         if ((*s.position)[axis] < c.domain.lo[axis] || (*s.position)[axis] > c.domain.hi[axis])
           fail(c, "species.position", "species '" + s.name + "' starts outside the domain on axis " + "xyz"[axis]);
     }
@@ -171,15 +187,17 @@ void validate_dem_case(const CaseConfig& c) {
   if (c.coarse_grain.enabled) {
     const auto& g = c.coarse_grain;
     const std::string size_key = g.kernel == "lucy" ? "coarse_grain.cutoff" : "coarse_grain.width";
-    const double spread = g.standard_deviation(d.reference_diameter);
+    const double spread = g.standard_deviation(d.reference_diameter, dim);
     const Vec3 length = c.domain.hi - c.domain.lo;
-    const std::array<int, 3> cells = g.grid(length, d.reference_diameter);
+    const std::array<int, 3> cells = g.grid(length, d.reference_diameter, dim);
+    if (dim == 2 && cells[2] != 1)
+      fail(c, "coarse_grain.cells", "in 2D the grid has one cell along z (the discs' plane): give [nx, ny, 1]");
     double count = 1.0;
     for (int a = 0; a < 3; ++a) {
       const double h = length[a] / cells[a];
       // A kernel narrower than the cells puts each point into the one cell it lies in: binning, not
       // coarse graining.
-      const bool averaged = cells[a] == 1 && c.domain.periodic(a);  // a profile across that axis
+      const bool averaged = cells[a] == 1 && (c.domain.periodic(a) || (dim == 2 && a == 2));  // a profile across that axis
       if (h > 2.0 * spread && !averaged)
         fail(c, "coarse_grain.cells",
              std::string("cells ") + fmt_number(h) + " m wide along " + static_cast<char>('x' + a) +

@@ -29,6 +29,10 @@ struct FlatWall : FaceWall {
 };
 
 struct DemState {
+  // 2: discs in the x-y plane at the box's mid-z, masses per unit thickness. Nothing then moves them
+  // off it: every contact normal, tangential force and gravity lies in the plane and every torque
+  // along z, exactly, so the engine runs the same code as in 3D. The box is not periodic along z.
+  int dimension = 3;
   ParticleStore particles;
   PeriodicBox box;
   Vec3 gravity;              // m/s^2

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grainflow/core/ball_measure.hpp"
 #include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/rolling_resistance.hpp"
 
@@ -49,7 +50,7 @@ double floor_peak_speed(const CaseConfig& c) {
 
 double characteristic_impact_speed(const CaseConfig& c, double diameter, double floor_speed) {
   const double fall = std::sqrt(2.0 * norm(c.gravity) * diameter);
-  const double thermal = std::sqrt(3.0 * std::max(0.0, c.particles.initial_temperature));
+  const double thermal = std::sqrt(c.engine.dimension * std::max(0.0, c.particles.initial_temperature));
   return std::max({floor_speed, fall, thermal, norm(c.particles.initial_velocity)});
 }
 
@@ -62,13 +63,13 @@ DerivedQuantities derive(const CaseConfig& c) {
     const auto& sp = c.species[s];
     d.max_diameter = std::max(d.max_diameter, sp.diameter);
     if (sp.frozen) continue;
-    const double m = sp.mass();
+    const double m = sp.mass(c.engine.dimension);
     if (lightest == 0.0 || m < lightest) {
       lightest = m;
       d.reference_species = static_cast<int>(s);
     }
   }
-  if (lightest == 0.0) lightest = c.species.front().mass();
+  if (lightest == 0.0) lightest = c.species.front().mass(c.engine.dimension);
   const auto& ref = c.species[d.reference_species];
   d.reference_mass = lightest;
   d.reference_diameter = ref.diameter;
@@ -137,9 +138,10 @@ DerivedQuantities derive(const CaseConfig& c) {
     d.hertz_k1 = hertz_equivalent_k1(ref.youngs_modulus, ref.poisson_ratio, ref.diameter, d.reference_mass,
                                      d.floor_peak_speed);
 
-  // Mass hold-up over the floor area normal to gravity (eq. 4-1-3): m_t = sum(pi d^3/6) / (A d).
+  // Mass hold-up over the floor area normal to gravity (eq. 4-1-3): m_t = sum(pi d^3/6) / (A d); in
+  // 2D the floor's length and the discs' areas.
   double area = 1.0;
-  for (int axis = 0; axis < 3; ++axis)
+  for (int axis = 0; axis < c.engine.dimension; ++axis)
     if (axis != d.gravity_axis) area *= c.domain.length(axis);
   double volume = 0.0;
   for (const auto& sp : c.species) {
@@ -148,7 +150,7 @@ DerivedQuantities derive(const CaseConfig& c) {
       continue;
     }
     d.moving_particles += sp.count;
-    volume += sp.count * M_PI / 6.0 * sp.diameter * sp.diameter * sp.diameter;
+    volume += sp.count * ball_measure(c.engine.dimension, 0.5 * sp.diameter);
   }
   d.mass_holdup = volume / (area * ref.diameter);
   d.skin = c.run.skin > 0.0 ? c.run.skin : 0.15 * d.max_diameter;

@@ -32,7 +32,7 @@ double default_expansion_time(double diameter, double gravity, double contact_du
 // m/s, the peak speed of the driven face (0 without a drive).
 double floor_peak_speed(const CaseConfig& c);
 // m/s, the impact speed a rate-dependent law (Hertz) is judged at: the largest of the floor's peak
-// speed, the fall over one diameter sqrt(2 g d), the initial thermal speed sqrt(3 T) and the initial
+// speed, the fall over one diameter sqrt(2 g d), the initial thermal speed sqrt(D T) (D dimensions) and the initial
 // velocity. 0 when nothing moves the particles.
 double characteristic_impact_speed(const CaseConfig& c, double diameter, double floor_speed);
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "grainflow/core/ball_measure.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/config/face_kinds.hpp"
 #include "grainflow/config/species_sequence.hpp"
@@ -15,19 +16,22 @@
 namespace grainflow::dem {
 namespace {
 
-void add_particle(ParticleStore& p, const SpeciesConfig& species, int species_index, double diameter,
+// The plane discs lie in (2D): the box's mid-z.
+double disc_plane(const CaseConfig& c) { return 0.5 * (c.domain.lo.z + c.domain.hi.z); }
+
+void add_particle(ParticleStore& p, int dimension, const SpeciesConfig& species, int species_index, double diameter,
                   const Vec3& position, Motion motion, int wall = -1) {
   const std::size_t i = p.size();
   p.resize(i + 1);
   const double r = 0.5 * diameter;
-  const double m = M_PI / 6.0 * diameter * diameter * diameter * species.density;
+  const double m = ball_measure(dimension, r) * species.density;
   p.position[i] = position;
   p.radius[i] = r;
   p.target_radius[i] = r;
   p.mass[i] = m;
   const bool moves = motion == Motion::free;
   p.inv_mass[i] = moves ? 1.0 / m : 0.0;
-  p.inv_inertia[i] = moves ? 1.0 / (0.4 * m * r * r) : 0.0;
+  p.inv_inertia[i] = moves ? 1.0 / (ball_inertia_factor(dimension) * m * r * r) : 0.0;
   p.species[i] = species_index;
   p.id[i] = static_cast<std::uint32_t>(i);
   p.motion[i] = motion;
@@ -72,7 +76,7 @@ void add_bumps(const CaseConfig& c, DemState& s) {
         x[a] = c.domain.lo[a] + (column + 0.5) * lattice.column_spacing + offset;
         x[b] = c.domain.lo[b] + (row + 0.5) * lattice.row_spacing;
         if (x[a] >= c.domain.hi[a]) x[a] -= c.domain.length(a);
-        add_particle(s.particles, species, species_index, lattice.bump_diameter, x, Motion::wall_bump, wall.face);
+        add_particle(s.particles, s.dimension, species, species_index, lattice.bump_diameter, x, Motion::wall_bump, wall.face);
         s.particles.velocity.back() = wall.velocity;
         ++species.count;
       }
@@ -95,6 +99,7 @@ void place_lattice(const CaseConfig& c, DemState& s, std::mt19937_64& rng, doubl
   const double spacing = c.particles.lattice_spacing * max_diameter;
   int n[3];
   for (int axis = 0; axis < 3; ++axis) n[axis] = static_cast<int>(std::floor((hi[axis] - lo[axis]) / spacing));
+  if (s.dimension == 2) n[2] = 1;  // one layer of discs, put on the plane below
   const auto sequence = species_sequence(c, rng);
   // Fill along the axes perpendicular to gravity first, so a bed builds up from the floor.
   const int up = dem::derive(c).gravity_axis;
@@ -108,8 +113,9 @@ void place_lattice(const CaseConfig& c, DemState& s, std::mt19937_64& rng, doubl
         x[b] = lo[b] + (jb + 0.5) * spacing;
         const bool down = c.gravity[up] <= 0.0;
         x[up] = down ? lo[up] + (k + 0.5) * spacing : hi[up] - (k + 0.5) * spacing;
+        if (s.dimension == 2) x.z = disc_plane(c);
         const int sp = sequence[placed++];
-        add_particle(s.particles, c.species[sp], sp, c.species[sp].diameter, x,
+        add_particle(s.particles, s.dimension, c.species[sp], sp, c.species[sp].diameter, x,
                      c.species[sp].frozen ? Motion::frozen : Motion::free);
       }
 }
@@ -136,7 +142,7 @@ void place_random(const CaseConfig& c, double expansion_time, DemState& s, std::
     const double r = 0.5 * c.species[sp].diameter;
     if (c.species[sp].position) {
       // A placed sphere (Lan's large sphere on the floor): the others are drawn clear of it.
-      add_particle(s.particles, c.species[sp], sp, c.species[sp].diameter, *c.species[sp].position,
+      add_particle(s.particles, s.dimension, c.species[sp], sp, c.species[sp].diameter, *c.species[sp].position,
                    c.species[sp].frozen ? Motion::frozen : Motion::free);
       continue;
     }
@@ -153,8 +159,9 @@ void place_random(const CaseConfig& c, double expansion_time, DemState& s, std::
         }
         x[axis] = lo[axis] + margin_lo + unit(rng) * (hi[axis] - lo[axis] - margin_lo - margin_hi);
       }
+      if (s.dimension == 2) x.z = disc_plane(c);
     } while (!clear_of_placed(x, r));
-    add_particle(s.particles, c.species[sp], sp, c.species[sp].diameter, x,
+    add_particle(s.particles, s.dimension, c.species[sp], sp, c.species[sp].diameter, x,
                  c.species[sp].frozen ? Motion::frozen : Motion::free);
   }
   ParticleStore& p = s.particles;
@@ -197,7 +204,7 @@ void place_from_file(const CaseConfig& c, DemState& s) {
     while (c.species[sp].name != record.species) ++sp;
     const double diameter = record.diameter > 0.0 ? record.diameter : c.species[sp].diameter;
     const Motion motion = c.species[sp].frozen ? Motion::frozen : Motion::free;
-    add_particle(s.particles, c.species[sp], sp, diameter, record.position, motion);
+    add_particle(s.particles, s.dimension, c.species[sp], sp, diameter, record.position, motion);
     s.particles.velocity.back() = record.velocity;
     s.particles.angular_velocity.back() = record.angular_velocity;
   }
@@ -211,7 +218,7 @@ void thermalise(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
   double total_mass = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.motion[i] != Motion::free) continue;
-    p.velocity[i] = {gauss(rng), gauss(rng), gauss(rng)};
+    p.velocity[i] = {gauss(rng), gauss(rng), s.dimension == 3 ? gauss(rng) : 0.0};
     momentum += p.mass[i] * p.velocity[i];
     total_mass += p.mass[i];
   }
@@ -221,14 +228,27 @@ void thermalise(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
     if (p.motion[i] == Motion::free) p.velocity[i] -= drift;
 }
 
+// Discs keep only their in-plane motion: a z position, z velocity or in-plane spin given in a file
+// (or placed, for a species' own position) is put on the plane, as the event-driven engine does.
+void confine_to_plane(const CaseConfig& c, DemState& s) {
+  ParticleStore& p = s.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.position[i].z = disc_plane(c);
+    p.velocity[i].z = 0.0;
+    p.angular_velocity[i].x = p.angular_velocity[i].y = 0.0;
+  }
+}
+
 }  // namespace
 
 DemState build_dem_state(const CaseConfig& c) {
   const DerivedQuantities d = derive(c);
   DemState s;
+  s.dimension = c.engine.dimension;
   s.box.lo = c.domain.lo;
   s.box.hi = c.domain.hi;
   for (int axis = 0; axis < 3; ++axis) s.box.periodic[axis] = c.domain.periodic(axis);
+  if (s.dimension == 2) s.box.periodic[2] = false;  // the discs' plane: no images along z
   s.gravity = c.gravity;
   s.time_step = d.time_step;
   s.skin = d.skin;
@@ -245,6 +265,7 @@ DemState build_dem_state(const CaseConfig& c) {
     place_random(c, d.expansion_time, s, rng);
   }
   thermalise(c, s, rng);
+  if (s.dimension == 2) confine_to_plane(c, s);
   for (std::size_t i = 0; i < s.particles.size(); ++i) s.box.wrap(s.particles.position[i], s.particles.image[i]);
   return s;
 }

@@ -30,7 +30,8 @@ struct BedSurface {
 // `floor` is the floor's position along `axis` (gravity along -axis); `area` the cross-section
 // normal to it; `diameter` sets the zone (d) and slice (d / 10) thicknesses. Over the particles
 // this rank owns, the profiles and counts summed over the ranks by `ranks`.
-BedSurface measure_bed_surface(const ParticleStore& particles, int axis, double floor, double area, double diameter,
-                               const BedSurfaceThresholds& thresholds, const RankReduce& ranks = {});
+// In 2D (discs) `area` is the floor's length and the solids fractions are area fractions.
+BedSurface measure_bed_surface(const ParticleStore& particles, int dimension, int axis, double floor, double area,
+                               double diameter, const BedSurfaceThresholds& thresholds, const RankReduce& ranks = {});
 
 }  // namespace grainflow::observe

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "grainflow/config/case_config.hpp"
+
 namespace grainflow::observe {
 namespace {
 
@@ -30,15 +32,16 @@ double CoarseGrainKernel::gaussian_factor(double d2) const {
   return std::exp(-s * d2) - std::exp(-s * reach2);
 }
 
-// Lucy: <r^2> = c^2 / 4 under (1 + 3q)(1 - q)^3 r^2 dr on [0, c], so each coordinate has c^2 / 12.
 double CoarseGrainKernel::standard_deviation() const {
-  return kind == Kind::gaussian ? width : width / std::sqrt(12.0);
+  return kind == Kind::gaussian ? width : lucy_standard_deviation(width, dimension);
 }
 
 CoarseGrainField::CoarseGrainField(const PeriodicBox& box, std::array<int, 3> cells, CoarseGrainKernel kernel)
     : box_(box), cells_(cells), kernel_(kernel) {
   for (int a = 0; a < 3; ++a) {
     if (cells_[a] < 1) throw std::invalid_argument("a coarse-graining grid needs at least one cell per axis");
+    if (a == 2 && kernel_.dimension == 2 && cells_[a] != 1)
+      throw std::invalid_argument("a 2D coarse-graining grid has one cell along z");
     spacing_[a] = box_.length(a) / cells_[a];
   }
   if (!(kernel_.width > 0.0)) throw std::invalid_argument("a coarse-graining kernel needs a positive width");

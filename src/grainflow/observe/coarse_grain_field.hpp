@@ -16,7 +16,8 @@
 // on any grid and next to walls, where the kernel is renormalized inside the box (the boundary
 // treatment of Weinhart et al.). Periodic axes wrap the kernel, every image counted. A periodic
 // axis of one cell is averaged over: the kernel spreads along the other axes only (MercuryCG's
-// lower-dimensional coarse graining, e.g. profiles across a chute). Each MPI rank
+// lower-dimensional coarse graining, e.g. profiles across a chute). In 2D (discs) z is such an
+// axis, of one cell, and the fields are per unit area (density kg/m^2, stresses N/m). Each MPI rank
 // adds its own particles and the contacts it lists; the sums are added over the ranks.
 #pragma once
 
@@ -39,6 +40,7 @@ struct CoarseGrainKernel {
   enum class Kind { gaussian, lucy };
   Kind kind = Kind::gaussian;
   double width = 0.0;  // m: the Gaussian's standard deviation, or Lucy's cutoff radius
+  int dimension = 3;   // 2: it spreads over the x-y plane (discs), fields per unit area
 
   static constexpr double kGaussianCutoff = 3.0;  // widths
   double reach() const { return kind == Kind::gaussian ? kGaussianCutoff * width : width; }
@@ -71,11 +73,12 @@ class CoarseGrainField {
 
   long samples() const { return samples_; }
   const std::array<int, 3>& cells() const { return cells_; }
-  bool averaged(int axis) const { return cells_[axis] == 1 && box_.periodic[axis]; }
+  bool averaged(int axis) const { return cells_[axis] == 1 && (box_.periodic[axis] || (axis == 2 && kernel_.dimension == 2)); }
   std::size_t cell_count() const { return static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2]; }
   Vec3 spacing() const { return spacing_; }
   Vec3 origin() const { return box_.lo; }
-  double cell_volume() const { return spacing_[0] * spacing_[1] * spacing_[2]; }
+  // m^3, or m^2 in 2D (the cell's area)
+  double cell_volume() const { return spacing_[0] * spacing_[1] * (kernel_.dimension == 2 ? 1.0 : spacing_[2]); }
   const CoarseGrainKernel& kernel() const { return kernel_; }
   // The summed values of cell k (x fastest), kValues of them, per cell volume: sums over samples.
   const double* cell_sums(std::size_t k) const { return &sums_[k * kValues]; }

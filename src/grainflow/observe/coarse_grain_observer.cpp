@@ -3,13 +3,15 @@
 #include <cmath>
 #include <string>
 
+#include "grainflow/core/ball_measure.hpp"
 #include "grainflow/io/vti_writer.hpp"
 
 namespace grainflow::observe {
 namespace {
 
-CoarseGrainKernel kernel_of(const CoarseGrainConfig& g, double reference_diameter) {
+CoarseGrainKernel kernel_of(const CoarseGrainConfig& g, double reference_diameter, int dimension) {
   CoarseGrainKernel k;
+  k.dimension = dimension;
   k.kind = g.kernel == "lucy" ? CoarseGrainKernel::Kind::lucy : CoarseGrainKernel::Kind::gaussian;
   k.width = g.kernel_size(reference_diameter);
   return k;
@@ -24,8 +26,8 @@ double sample_interval(const CaseConfig& c) {
 
 CoarseGrainObserver::CoarseGrainObserver(const RunContext& run, const Frame& start)
     : run_(run),
-      field_(*start.box, run.c->coarse_grain.grid(start.box->hi - start.box->lo, run.reference_diameter),
-             kernel_of(run.c->coarse_grain, run.reference_diameter)),
+      field_(*start.box, run.c->coarse_grain.grid(start.box->hi - start.box->lo, run.reference_diameter, run.dimension),
+             kernel_of(run.c->coarse_grain, run.reference_diameter, run.dimension)),
       schedule_(sample_interval(*run.c), run.time_step),
       start_(run.c->coarse_grain.start >= 0.0 ? run.c->coarse_grain.start : run.c->output.average_start) {}
 
@@ -34,8 +36,7 @@ void CoarseGrainObserver::sample(const Frame& now) {
   const ParticleStore& p = *now.particles;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.counted(i)) continue;
-    const double r = p.radius[i];
-    field_.add_particle(p.position[i], p.mass[i], 4.0 / 3.0 * M_PI * r * r * r, p.velocity[i]);
+    field_.add_particle(p.position[i], p.mass[i], ball_measure(run_.dimension, p.radius[i]), p.velocity[i]);
   }
   now.contact_forces([&](std::uint32_t i, int, const Vec3& from, const Vec3& force) {
     field_.add_contact(p.position[i], from, force);

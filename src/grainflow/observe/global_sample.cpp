@@ -2,7 +2,7 @@
 
 namespace grainflow::observe {
 
-GlobalSample sample_global(const ParticleStore& p, int gravity_axis, const RankReduce& ranks) {
+GlobalSample sample_global(const ParticleStore& p, int gravity_axis, int dimension, const RankReduce& ranks) {
   // mass, momentum (3), sum m v_a^2 (3), rotational energy, sum m height: summed over the ranks at
   // once.
   double sums[9] = {};
@@ -26,7 +26,7 @@ GlobalSample sample_global(const ParticleStore& p, int gravity_axis, const RankR
   g.rotational_energy = sums[7];
   if (g.mass > 0.0) {
     const Vec3 mean = g.momentum * (1.0 / g.mass);
-    g.granular_temperature = (twice_kinetic / g.mass - norm2(mean)) / 3.0;
+    g.granular_temperature = (twice_kinetic / g.mass - norm2(mean)) / dimension;
     for (int a = 0; a < 3; ++a) g.component_temperature[a] = sums[4 + a] / g.mass - mean[a] * mean[a];
     g.mass_center_height = sums[8] / g.mass;
   }

@@ -18,6 +18,7 @@ struct GlobalSample {
 };
 
 // Over the moving particles this rank owns (ghosts left out), summed over the ranks by `ranks`.
-GlobalSample sample_global(const ParticleStore& particles, int gravity_axis, const RankReduce& ranks = {});
+// The granular temperature is per degree of freedom of the `dimension` translations.
+GlobalSample sample_global(const ParticleStore& particles, int gravity_axis, int dimension, const RankReduce& ranks = {});
 
 }  // namespace grainflow::observe

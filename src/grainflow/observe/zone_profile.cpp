@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "grainflow/core/ball_measure.hpp"
+
 namespace grainflow::observe {
 
-ZoneProfile::ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area)
-    : axis_(axis), lo_(lo), hi_(hi), thickness_(thickness) {
+ZoneProfile::ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area, int dimension)
+    : axis_(axis), dimension_(dimension), lo_(lo), hi_(hi), thickness_(thickness) {
   const int zones = std::max(1, static_cast<int>(std::ceil((hi - lo) / thickness - 1e-9)));
   sums_.resize(zones);
   scratch_.resize(zones);
@@ -25,11 +27,11 @@ void ZoneProfile::for_each_overlap(const ParticleStore& p, std::size_t i, Visit&
   const double c = p.position[i][axis_];
   const int first = std::max(0, static_cast<int>(std::floor((c - r - lo_) / thickness_)));
   const int last = std::min(zones - 1, static_cast<int>(std::floor((c + r - lo_) / thickness_)));
-  const double sphere = 4.0 / 3.0 * M_PI * r * r * r;
+  const double whole = ball_measure(dimension_, r);
   for (int z = first; z <= last; ++z) {
     const double a = lo_ + z * thickness_;
-    const double part = sphere_slab_volume(r, c, a, std::min(hi_, a + thickness_));
-    if (part > 0.0) visit(z, part, part / sphere);
+    const double part = particle_slab_measure(dimension_, r, c, a, std::min(hi_, a + thickness_));
+    if (part > 0.0) visit(z, part, part / whole);
   }
 }
 
@@ -106,7 +108,7 @@ double ZoneProfile::instantaneous_temperature(const ParticleStore& p) {
     mass += s.mass;
     fluctuation += s.fluctuation_lan.x + s.fluctuation_lan.y + s.fluctuation_lan.z;
   }
-  return mass > 0.0 ? fluctuation / (3.0 * mass) : 0.0;
+  return mass > 0.0 ? fluctuation / (dimension_ * mass) : 0.0;
 }
 
 void ZoneProfile::sample(const ParticleStore& p) {
@@ -151,9 +153,9 @@ void ZoneProfile::add_errors(std::vector<ZoneAverages>& out) const {
       for (int axis = 0; axis < 3; ++axis) {
         const double mean = s.momentum[axis] / s.mass;
         u[axis].push_back(mean);
-        tm += std::max(0.0, s.second_moment[axis] / s.mass - mean * mean) / 3.0;
+        tm += std::max(0.0, s.second_moment[axis] / s.mass - mean * mean) / dimension_;
       }
-      lan.push_back((s.fluctuation_lan.x + s.fluctuation_lan.y + s.fluctuation_lan.z) / (3.0 * s.mass));
+      lan.push_back((s.fluctuation_lan.x + s.fluctuation_lan.y + s.fluctuation_lan.z) / (dimension_ * s.mass));
       time_mean.push_back(tm);
     }
     ZoneAverages& a = out[z];

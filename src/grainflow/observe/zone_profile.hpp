@@ -36,8 +36,10 @@ struct ZoneAverages {
 
 class ZoneProfile {
  public:
-  // Zones of `thickness` from `lo` up to `hi` (the last one possibly thinner).
-  ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area);
+  // Zones of `thickness` from `lo` up to `hi` (the last one possibly thinner). In 2D zones are
+  // strips and the cross-section a length: disc-strip areas weigh the discs, temperatures are per
+  // in-plane component.
+  ZoneProfile(int axis, double lo, double hi, double thickness, double cross_section_area, int dimension = 3);
   void sample(const ParticleStore& particles);  // one instantaneous sample, accumulated
   std::vector<ZoneAverages> averages() const;
   // Mass-weighted (partial-volume) mean velocity of each zone now, not accumulated; zones without
@@ -69,6 +71,7 @@ class ZoneProfile {
     Sums& operator+=(const Sums& o);
   };
   int axis_;
+  int dimension_;
   double lo_, hi_, thickness_;  // m; the last zone ends at hi_
   std::vector<double> zone_volume_;  // m^3; the top zone may be cut by the domain's upper bound
   template <class Visit>

@@ -10,7 +10,7 @@ namespace grainflow::observe {
 ZoneLayout::ZoneLayout(const RunContext& run) : axis(run.gravity_axis) {
   const CaseConfig& c = *run.c;
   thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : run.reference_diameter;
-  for (int a = 0; a < 3; ++a)
+  for (int a = 0; a < run.dimension; ++a)
     if (a != axis) area *= c.domain.length(a);
   lo = c.domain.lo[axis];
   if (c.drive.enabled && c.drive.face == axis * 2) lo -= thickness * std::ceil(c.drive.amplitude[axis] / thickness - 1e-9);
@@ -18,7 +18,7 @@ ZoneLayout::ZoneLayout(const RunContext& run) : axis(run.gravity_axis) {
 }
 
 ZoneProfile ZoneLayout::profile(const RunContext& run) const {
-  ZoneProfile p(axis, lo, hi, thickness, area);
+  ZoneProfile p(axis, lo, hi, thickness, area, run.dimension);
   p.set_reduce(run.ranks);
   return p;
 }
@@ -41,15 +41,16 @@ void ZoneProfileObserver::write(const Frame& last, OutputSink& out) {
            << " samples; temperature = about the instantaneous zone mean (Lan), temperature_time_mean = about the"
               " long-term zone mean (Campbell)\n";
       file << "# units: position m, Y 1 (position / d), velocities m/s, temperatures m^2/s^2, W 1 (sqrt(T/(g d))), "
-              "kinetic_energy_density J/m^3; *_error: standard errors by block averaging (nan: too few samples)\n";
+              "kinetic_energy_density J/m^" << run_.dimension << "; *_error: standard errors by block averaging (nan: too few samples)\n";
       file << "zone,position_lo,position_hi,position,Y,solids_fraction,mean_velocity_x,mean_velocity_y,mean_velocity_z,"
               "temperature_x,temperature_y,temperature_z,temperature,temperature_time_mean,W,kinetic_energy_density,"
               "solids_fraction_error,mean_velocity_y_error,temperature_error,temperature_time_mean_error,W_error\n";
       for (std::size_t z = 0; z < zones.size(); ++z) {
         const auto& a = zones[z];
         const double mid = 0.5 * (a.lo + a.hi);
-        const double t = (a.temperature_lan.x + a.temperature_lan.y + a.temperature_lan.z) / 3.0;
-        const double tm = (a.temperature_time_mean.x + a.temperature_time_mean.y + a.temperature_time_mean.z) / 3.0;
+        const int dim = run_.dimension;  // the components in the plane of motion (z is 0 in 2D)
+        const double t = (a.temperature_lan.x + a.temperature_lan.y + a.temperature_lan.z) / dim;
+        const double tm = (a.temperature_time_mean.x + a.temperature_time_mean.y + a.temperature_time_mean.z) / dim;
         const double w = g > 0.0 ? std::sqrt(t / (g * diameter)) : 0.0;
         // dW = dT / (2 sqrt(T g d)), first-order propagation.
         const double w_error = t > 0.0 && g > 0.0 ? a.temperature_lan_error / (2.0 * std::sqrt(t * g * diameter)) : NAN;

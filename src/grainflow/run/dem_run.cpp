@@ -102,7 +102,7 @@ void put(io::JsonObject& summary, const std::string& key, const MeanWithError& m
 // What observers see of a state; the clock is refreshed before each use.
 observe::Frame frame_of(const dem::DemState& st) {
   observe::Frame f;
-  f.dimension = 3;
+  f.dimension = st.dimension;
   f.time = st.time;
   f.time_step = st.time_step;
   f.step = st.step;
@@ -217,7 +217,7 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   axis = derived.gravity_axis;
   total_steps = static_cast<long>(std::llround(c.run.duration / dt));
 
-  context = observe::RunContext{&c, 3, axis, derived.reference_diameter, dt, derived.restitution, dir, writes,
+  context = observe::RunContext{&c, c.engine.dimension, axis, derived.reference_diameter, dt, derived.restitution, dir, writes,
                                 rank_reduce, &comm};
   const observe::ZoneLayout zones(context);
   area = zones.area;
@@ -342,7 +342,7 @@ void DemRun::record(E& e) {
   const dem::ContactStatistics stats = ranks ? global_statistics(e.statistics(), comm) : e.statistics();
   TimeseriesRow row{};
   row.time = st.time;
-  row.global = observe::sample_global(st.particles, axis, rank_reduce);
+  row.global = observe::sample_global(st.particles, axis, st.dimension, rank_reduce);
   const observe::FloorMotion floor = observe::floor_motion(frame.walls, c);
   row.floor_position = floor.position;
   row.floor_velocity = floor.velocity;
@@ -353,7 +353,7 @@ void DemRun::record(E& e) {
   row.collisions = stats.collisions;
   row.wall_collisions = stats.wall_collisions;
   if (floor_below)
-    row.bed = observe::measure_bed_surface(st.particles, axis, observe::floor_position(frame.walls, c, axis), area,
+    row.bed = observe::measure_bed_surface(st.particles, st.dimension, axis, observe::floor_position(frame.walls, c, axis), area,
                                            derived.reference_diameter, bed_thresholds, rank_reduce);
   row.zone_temperature = zones_now->instantaneous_temperature(st.particles);
   const auto [budget, start_energy] = global_energy_budget(e);
@@ -490,7 +490,7 @@ void DemRun::write_outputs(E& e) {
   long long moving = 0;
   for (std::size_t i = 0; i < st.particles.size(); ++i) moving += st.particles.counted(i);
   moving = ranks ? comm.sum(moving) : moving;
-  const auto global = observe::sample_global(st.particles, axis, rank_reduce);
+  const auto global = observe::sample_global(st.particles, axis, st.dimension, rank_reduce);
   const long long migrations = e.domain() ? comm.sum(e.domain()->migrated()) : 0;
   const long long ghosts = e.domain() ? comm.sum(e.domain()->ghosts()) : 0;
   const observe::Frame& last = frame_now(e);
@@ -516,7 +516,7 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
       ++counted;
     }
   summary.string("engine", "dem");
-  summary.integer("dimension", 3);
+  summary.integer("dimension", c.engine.dimension);
   summary.integer("particles", moving);
   summary.integer("fixed_particles", particle_count - moving);
   summary.string("case", c.path);
@@ -566,10 +566,12 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
       series_mean(rows, from, [](const TimeseriesRow& r) { return r.global.granular_temperature; }));
   put(summary, "zone_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.zone_temperature; }));
   // Lan's T_x, T_y, T_z of Table 4.6: each component's share of the cell-average temperature,
-  // <C_a^2> / 3, so that they add up to it (his T_x = T_z at Gamma = 5 and 20 are a third of <C_x^2>).
-  for (int a = 0; a < 3; ++a)
+  // <C_a^2> / 3, so that they add up to it (his T_x = T_z at Gamma = 5 and 20 are a third of <C_x^2>);
+  // in 2D <C_a^2> / 2 of x and y.
+  const int dim = c.engine.dimension;
+  for (int a = 0; a < dim; ++a)
     put(summary, std::string("cell_temperature_") + "xyz"[a],
-        series_mean(rows, from, [a](const TimeseriesRow& r) { return r.global.component_temperature[a] / 3.0; }));
+        series_mean(rows, from, [a, dim](const TimeseriesRow& r) { return r.global.component_temperature[a] / dim; }));
   if (floor_below) {
     put(summary, "bed_height", series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.height; }));
     put(summary, "bulk_solids_fraction",

@@ -188,9 +188,7 @@ void EdmdRun::record(E& e) {
   auto& k = e.counters();
   Row r{};
   r.time = st.time;
-  r.global = observe::sample_global(st.particles, gravity_axis);
-  // The kinetic temperature per degree of freedom uses the number of dimensions.
-  r.global.granular_temperature *= 3.0 / dim;
+  r.global = observe::sample_global(st.particles, gravity_axis, dim);
   r.collisions = k.collisions;
   r.wall_collisions = k.wall_collisions;
   r.events = k.events;
@@ -391,7 +389,7 @@ void EdmdRun::write_outputs(E& e) {
     temperature = average_temperature / average_rows;
     pressure = (average_kinetic / average_rows + average_virial / average_span) / (dim * volume);
   }
-  const auto global = observe::sample_global(st.particles, gravity_axis);
+  const auto global = observe::sample_global(st.particles, gravity_axis, dim);
   summary.string("engine", "edmd");
   summary.integer("dimension", dim);
   summary.integer("particles", static_cast<long long>(n));
@@ -421,7 +419,7 @@ void EdmdRun::write_outputs(E& e) {
                  temperature > 0.0 && mean_mass > 0.0 ? pressure / (number_density * mean_mass * temperature) : 0.0);
   summary.number("kinetic_energy", global.kinetic_energy);
   summary.number("rotational_energy", global.rotational_energy);
-  summary.number("granular_temperature", temperature > 0.0 ? temperature : global.granular_temperature * 3.0 / dim);
+  summary.number("granular_temperature", temperature > 0.0 ? temperature : global.granular_temperature);
   summary.number("dissipated_energy", k.dissipated);
   write_energy_budget(e.energy_budget(), k.start_energy, summary);
   if (c.servo.enabled) {

@@ -87,7 +87,7 @@ TheoryInputs theory_inputs(const CaseConfig& c) {
       const typename Law::Params pair = Law::pair_params(c.contact, s);
       p.restitution = Law::binary_contact(pair, {0.5 * d.reference_mass, 0.25 * s.diameter, d.impact_speed}).restitution;
       p.floor_restitution =
-          Law::binary_contact(Law::wall_params(pair, w.contact, 0.0), {s.mass(), 0.5 * s.diameter, d.impact_speed}).restitution;
+          Law::binary_contact(Law::wall_params(pair, w.contact, 0.0), {s.mass(c.engine.dimension), 0.5 * s.diameter, d.impact_speed}).restitution;
     });
   }
   if (!edmd && (c.contact.friction > 0.0 || w.friction > 0.0))
