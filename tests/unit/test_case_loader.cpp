@@ -475,3 +475,24 @@ TEST(CaseLoader, HugeLatticeRegionCountsItsSitesWithoutOverflow) {
 TEST(CaseLoader, DomainBeyondPositionPrecisionIsRefused) {
   expect_input_error(sphere_lattice_case("[33.0, 33.0, 3.3e97]"), "domain.hi", "at most 1e9");
 }
+
+// Discs in the DEM engine: the plane must stay the plane of motion, so anything that would push a
+// disc along z is refused, naming the key; the rest of a 3D case carries over.
+TEST(CaseLoader, DemDiscsRefuseWhatWouldLeaveThePlane) {
+  const std::string discs = replace(kMinimal, "dimension = 3", "dimension = 2");
+  const CaseConfig c = load_case_from_string(discs, kLabel);
+  EXPECT_EQ(c.engine.dimension, 2);
+  // A disc of 3 mm at 2490 kg/m^2: its mass is density x area.
+  EXPECT_DOUBLE_EQ(c.species[0].mass(2), 2490.0 * M_PI * 0.0015 * 0.0015);
+  expect_input_error(replace(discs, "z = \"periodic\"", "z = \"wall\""), "domain.boundary", "no walls along z");
+  expect_input_error(replace(discs, "[0.0, -9.81, 0.0]", "[0.0, -9.81, 1.0]"), "gravity.vector", "z component must be 0");
+  expect_input_error(replace(discs, "[walls.ylo]", "[walls.ylo]\nvelocity = [0.0, 0.0, 0.1]"), "walls.ylo.velocity",
+                     "z component must be 0");
+  expect_input_error(replace(replace(discs, "y = [\"wall\", \"open\"]", "y = [\"bumpy\", \"open\"]"), "[walls.ylo]",
+                             "[walls.ylo]\nlattice = \"triangular\""),
+                     "walls.ylo.lattice", "one row of half-discs");
+  expect_input_error(discs + "\n[coarse_grain]\ncells = [10, 20, 4]\n", "coarse_grain.cells", "one cell along z");
+  // A 2D grid defaults to one cell along z, and Lucy's 2D spread sets the default cell count.
+  EXPECT_EQ(c.coarse_grain.grid({0.02, 0.05, 0.02}, 0.003, 2)[2], 1);
+  EXPECT_DOUBLE_EQ(lucy_standard_deviation(1.0, 2), std::sqrt(5.0 / 56.0));
+}

@@ -46,6 +46,17 @@ TEST(CoarseGrainKernel, LucyStandardDeviationIsCutoffOverRootTwelve) {
   }
   EXPECT_NEAR(std::sqrt(r4 / r2 / 3.0), lucy.standard_deviation(), 1e-12);
   EXPECT_DOUBLE_EQ(lucy.standard_deviation(), 2.0 / std::sqrt(12.0));
+  // Over a disc (2D): (1/2) int r^3 phi dr / int r phi dr.
+  CoarseGrainKernel disc = lucy;
+  disc.dimension = 2;
+  double q3 = 0.0, q1 = 0.0;
+  for (int k = 0; k <= n; ++k) {
+    const double r = disc.width * k / n;
+    const double w = (k == 0 || k == n) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+    q3 += w * r * r * r * disc.shape(r * r);
+    q1 += w * r * disc.shape(r * r);
+  }
+  EXPECT_NEAR(std::sqrt(q3 / q1 / 2.0), disc.standard_deviation(), 1e-12);
   // Lucy's polynomial: 1 at the centre, 0 with zero slope at the cutoff; the Gaussian cut at 3 widths.
   EXPECT_DOUBLE_EQ(lucy.shape(0.0), 1.0);
   EXPECT_NEAR(lucy.shape(1.999 * 1.999), 0.0, 1e-8);
@@ -128,6 +139,36 @@ TEST(CoarseGrainField, SingleParticleDensityIsLucysNormalizedKernel) {
         worst = std::max(worst, std::abs(coarse_grain_cell(field, k).density - expected));
       }
   EXPECT_LT(worst, 1e-5 * m * norm);
+}
+
+TEST(CoarseGrainField, DiscDensityIsLucysNormalizedKernelPerArea) {
+  // In 2D Lucy's kernel is 5 / (pi c^2) (1 + 3q)(1 - q)^3 (its integral over the disc, 2 pi c^2
+  // int q (1 + 3q)(1 - q)^3 dq = pi c^2 / 5), the density a mass per area over one cell along z;
+  // on cells c / 10 wide to ~1e-5 as in 3D. A non-periodic z (the DEM engine's box for discs) is
+  // still averaged over.
+  const double c = 1.0, h = 0.1, m = 2.0;
+  const PeriodicBox box = box_of({0, 0, 0}, {4, 4, 1}, {false, false, false});
+  CoarseGrainKernel lucy{Kind::lucy, c};
+  lucy.dimension = 2;
+  CoarseGrainField field(box, {40, 40, 1}, lucy);
+  EXPECT_TRUE(field.averaged(2));
+  EXPECT_DOUBLE_EQ(field.cell_volume(), h * h);
+  const Vec3 x{2.03, 1.96, 0.5};
+  field.add_particle(x, m, 0.0, {});
+  field.close_sample();
+  const double norm = 5.0 / (M_PI * c * c);
+  double worst = 0.0, mass = 0.0;
+  for (int iy = 0; iy < 40; ++iy)
+    for (int ix = 0; ix < 40; ++ix) {
+      const Vec3 centre{(ix + 0.5) * h, (iy + 0.5) * h, 0.5};
+      const double expected = m * norm * lucy.shape(norm2(centre - x));
+      const double density = coarse_grain_cell(field, ix + 40 * iy).density;
+      worst = std::max(worst, std::abs(density - expected));
+      mass += density * h * h;
+    }
+  EXPECT_LT(worst, 1e-5 * m * norm);
+  EXPECT_NEAR(mass, m, 1e-13 * m);
+  EXPECT_THROW(CoarseGrainField(box, {40, 40, 2}, lucy), std::invalid_argument);
 }
 
 TEST(CoarseGrainField, KineticStressIsThatOfTheFluctuations) {
