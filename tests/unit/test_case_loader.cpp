@@ -496,3 +496,48 @@ TEST(CaseLoader, DemDiscsRefuseWhatWouldLeaveThePlane) {
   EXPECT_EQ(c.coarse_grain.grid({0.02, 0.05, 0.02}, 0.003, 2)[2], 1);
   EXPECT_DOUBLE_EQ(lucy_standard_deviation(1.0, 2), std::sqrt(5.0 / 56.0));
 }
+
+// A species drawn in its own region (a rough chute base of frozen grains in a thin layer), and the
+// checks of Lees-Edwards boundaries in the DEM engine.
+TEST(CaseLoader, SpeciesRegionsAndDemLeesEdwardsAreChecked) {
+  const std::string base = kMinimal + R"(
+[[species]]
+name = "base"
+diameter = 0.003
+density = 2490.0
+count = 30
+frozen = true
+region_lo = [0.0, 0.0, 0.0]
+region_hi = [0.02, 0.0045, 0.02]
+)";
+  const CaseConfig c = load_case_from_string(base, kLabel);
+  ASSERT_TRUE(c.species[1].region_hi.has_value());
+  EXPECT_EQ(c.species[1].region_hi->y, 0.0045);
+  // Its centres lie a radius inside the region's bounded extent, the others' outside it too.
+  const dem::DemState s = dem::build_dem_state(c);
+  int in_base = 0;
+  for (std::size_t i = 0; i < s.particles.size(); ++i) {
+    if (s.particles.motion[i] != Motion::frozen) continue;
+    ++in_base;
+    EXPECT_GE(s.particles.position[i].y, 0.0015 - 1e-15);
+    EXPECT_LE(s.particles.position[i].y, 0.0030 + 1e-15);
+    EXPECT_EQ(s.particles.radius[i], 0.0015) << "a fixed grain keeps its size (fixed grains may overlap)";
+  }
+  EXPECT_EQ(in_base, 30);
+  expect_input_error(replace(base, "region_hi = [0.02, 0.0045, 0.02]\n", ""), "species.1.region_hi",
+                     "needs both region_lo and region_hi");
+  expect_input_error(replace(base, "init = \"random\"", "init = \"lattice\""), "species.region_lo", "init = \"random\"");
+  expect_input_error(replace(base, "region_hi = [0.02, 0.0045, 0.02]", "region_hi = [0.02, 0.0025, 0.02]"),
+                     "species.region_hi", "wider than the largest diameter");
+
+  const std::string sheared = replace(replace(replace(kMinimal, "y = [\"wall\", \"open\"]", "y = \"periodic\""),
+                                              "[0.0, -9.81, 0.0]", "[0.0, 0.0, 0.0]"),
+                                      "[walls.ylo]\nrestitution = 0.8\nfriction = 0.3\n", "") +
+                              "\n[lees_edwards]\nshear_rate = 100.0\n";
+  EXPECT_EQ(load_case_from_string(sheared, kLabel).lees_edwards_rate, 100.0);
+  expect_input_error(replace(sheared, "[0.0, 0.0, 0.0]\n\n[[species]]", "[0.0, -9.81, 0.0]\n\n[[species]]"), "gravity.vector",
+                     "only act along z");
+  expect_input_error(replace(sheared, "hi = [0.02, 0.05, 0.02]", "hi = [0.012, 0.05, 0.02]"), "domain.hi",
+                     "4 list cutoffs");
+  expect_input_error(sheared + "\n[coarse_grain]\n", "coarse_grain", "Lees-Edwards");
+}

@@ -45,6 +45,9 @@ struct SpeciesConfig {
   double poisson_ratio = -1.0;  // optional, with youngs_modulus
   std::optional<Vec3> position; // m: the one particle of this species starts here (init = random;
                                 // e.g. Lan's large sphere at the centre of the floor, section 5.2)
+  // m: this species' own placement region (init = random), in place of [particles]'s; e.g. a rough
+  // chute base of frozen spheres drawn at random in a thin layer, as Silbert et al. (2001) made theirs
+  std::optional<Vec3> region_lo, region_hi;
   double mass(int dimension) const;  // kg, one sphere (3D) or disc (2D: density per area)
 };
 
@@ -265,7 +268,7 @@ struct CaseConfig {
   ContactConfig contact;
   CollisionConfig collision;
   ServoConfig servo;
-  double lees_edwards_rate = 0.0;  // 1/s, [lees_edwards] shear_rate: unbounded simple shear (edmd)
+  double lees_edwards_rate = 0.0;  // 1/s, [lees_edwards] shear_rate: unbounded simple shear (flow x, gradient y)
   std::array<WallConfig, 6> walls;
   DriveConfig drive;
   RunConfig run;

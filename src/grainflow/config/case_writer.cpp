@@ -84,6 +84,8 @@ void write_species(Out& o, const CaseConfig& c) {
     o.key("youngs_modulus", s.youngs_modulus);
     if (s.poisson_ratio >= 0.0) o.key("poisson_ratio", s.poisson_ratio);
     if (s.position) o.key("position", vec(*s.position));
+    if (s.region_lo) o.key("region_lo", vec(*s.region_lo));
+    if (s.region_hi) o.key("region_hi", vec(*s.region_hi));
   }
 }
 

@@ -46,7 +46,9 @@ struct ContactStore {
   // may be re-sorted, or leave and arrive (MPI ranks), between one list and the next.
   // `image`: which image of b, as box lengths between the unwrapped particles (the list's shift
   // plus a's and b's periodic crossings), which wrapping leaves alone: with a narrow periodic width
-  // one pair touches at several images, each with its own state.
+  // one pair touches at several images, each with its own state. Under Lees–Edwards shear an image
+  // across the sliding rows also counts the widths taken off the offset (`shear_turns`,
+  // periodic_box.hpp), so that the key stays the same when they are taken off.
   struct KeptPair {
     std::uint32_t a, b;
     std::array<std::int32_t, 3> image;
@@ -54,23 +56,24 @@ struct ContactStore {
   };
   using Images = std::vector<std::array<std::int32_t, 3>>;
   static std::array<std::int32_t, 3> image_key(std::uint8_t code, const std::array<std::int32_t, 3>& image_a,
-                                               const std::array<std::int32_t, 3>& image_b) {
+                                               const std::array<std::int32_t, 3>& image_b, std::int32_t shear_turns = 0) {
     const auto s = PeriodicBox::shift_of(code);
-    return {s[0] + image_a[0] - image_b[0], s[1] + image_a[1] - image_b[1], s[2] + image_a[2] - image_b[2]};
+    return {s[0] - s[1] * shear_turns + image_a[0] - image_b[0], s[1] + image_a[1] - image_b[1],
+            s[2] + image_a[2] - image_b[2]};
   }
 
   // Takes the touching pairs' states out of `old_list`, whose particles have ids `ids` and periodic
   // crossings `images` (as when the list was built), and frees the per-pair arrays, so that the
   // next list is built without the old one's states beside it.
   std::vector<KeptPair> take_touching(const NeighborPairs& old_list, const std::vector<std::uint32_t>& ids,
-                                      const Images& images) {
+                                      const Images& images, std::int32_t shear_turns = 0) {
     std::vector<KeptPair> kept;
     const std::size_t n = old_list.offsets.empty() ? 0 : old_list.offsets.size() - 1;
     for (std::size_t i = 0; i < n; ++i)
       for (std::uint32_t k = old_list.offsets[i]; k < old_list.offsets[i + 1]; ++k)
         if (pair_touching[k]) {
           const std::uint32_t j = old_list.partner[k];
-          kept.push_back({ids[i], ids[j], image_key(old_list.shift[k], images[i], images[j]), pair_state[k]});
+          kept.push_back({ids[i], ids[j], image_key(old_list.shift[k], images[i], images[j], shear_turns), pair_state[k]});
         }
     std::vector<State>().swap(pair_state);
     std::vector<std::uint8_t>().swap(pair_touching);
@@ -80,7 +83,7 @@ struct ContactStore {
   // Puts the kept states onto `new_list`, whose particles have ids `ids`. Where `kept` names a pair
   // twice, the later entry wins (a migrating particle's states, appended, replace a copy's).
   void restore(const std::vector<KeptPair>& kept, const NeighborPairs& new_list, const std::vector<std::uint32_t>& ids,
-               const Images& images) {
+               const Images& images, std::int32_t shear_turns = 0) {
     pair_state.assign(new_list.pair_count(), State{});
     pair_touching.assign(new_list.pair_count(), 0);
     if (kept.empty()) return;
@@ -99,7 +102,7 @@ struct ContactStore {
       for (std::uint32_t k = new_list.offsets[i]; k < new_list.offsets[i + 1]; ++k) {
         const std::uint32_t j = new_list.partner[k];
         const std::uint32_t partner_id = ids[j];
-        const auto image = image_key(new_list.shift[k], images[i], images[j]);
+        const auto image = image_key(new_list.shift[k], images[i], images[j], shear_turns);
         for (std::uint32_t q = begin; q < end; ++q) {
           const KeptPair& entry = kept[order[q]];
           if (entry.b != partner_id || entry.image != image) continue;

@@ -43,6 +43,22 @@ void validate_planar(const CaseConfig& c) {
   }
 }
 
+// Lees–Edwards shear (flow x, gradient y): the sliding rows' search needs four cells of one list
+// cutoff along x and three along y, and a potential along the sheared axes would have no bound.
+void validate_lees_edwards(const CaseConfig& c, const dem::DerivedQuantities& d) {
+  if (c.gravity.x != 0.0 || c.gravity.y != 0.0)
+    fail(c, "gravity.vector", "with Lees-Edwards boundaries gravity may only act along z (x and y are sheared and periodic)");
+  if (c.coarse_grain.enabled)
+    fail(c, "coarse_grain", "is not yet available with Lees-Edwards boundaries (stresses.csv gives the strips' stresses)");
+  const double cutoff = d.max_diameter + d.skin + d.cohesion_reach;
+  if (c.domain.length(0) < 4.0 * cutoff)
+    fail(c, "domain.hi", "with Lees-Edwards boundaries the box must be at least 4 list cutoffs (" + fmt_number(4.0 * cutoff) +
+                             " m: diameter + skin) long along x");
+  if (c.domain.length(1) < 3.0 * cutoff)
+    fail(c, "domain.hi", "with Lees-Edwards boundaries the box must be at least 3 list cutoffs (" + fmt_number(3.0 * cutoff) +
+                             " m: diameter + skin) high along y");
+}
+
 }  // namespace
 
 void validate_dem_case(const CaseConfig& c) {
@@ -52,6 +68,7 @@ void validate_dem_case(const CaseConfig& c) {
     if (const auto problem = Law::species_problem(c.species)) fail(c, "species." + problem->key, problem->reason);
   });
   const dem::DerivedQuantities d = dem::derive(c);
+  if (c.lees_edwards_rate != 0.0) validate_lees_edwards(c, d);
 
   if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");
   if (d.law_problem) fail(c, "contact." + d.law_problem->key, d.law_problem->reason);
@@ -95,26 +112,37 @@ void validate_dem_case(const CaseConfig& c) {
     Vec3 hi = c.particles.region_hi.value_or(c.domain.hi);
     // The species placed at random must fit across the region (one placed at its own `position`,
     // Lan's large sphere, need not).
-    double placed_diameter = 0.0;
-    for (const auto& species : c.species)
+    // A region (the particles' shared one, or a species' own) must fit what is drawn in it.
+    auto check_region = [&](const Vec3& lo, const Vec3& hi, double placed_diameter, double solids,
+                            const std::string& key_lo, const std::string& key_hi, const std::string& what) {
+      for (int axis = 0; axis < dim; ++axis) {
+        if (lo[axis] < c.domain.lo[axis] || hi[axis] > c.domain.hi[axis])
+          fail(c, key_lo, "the placement region must lie inside the domain");
+        // Along a periodic axis centres go anywhere (no face to keep clear of).
+        if (!c.domain.periodic(axis) && !(hi[axis] - lo[axis] > placed_diameter))
+          fail(c, key_hi, "the placement region must be wider than the largest diameter placed at random on every bounded axis");
+        if (!(hi[axis] > lo[axis])) fail(c, key_hi, "the placement region must have a positive extent");
+      }
+      double volume = 1.0;  // an area in 2D
+      for (int axis = 0; axis < dim; ++axis) volume *= hi[axis] - lo[axis];
+      if (c.particles.init == "random" && solids / volume > kMaxRandomSolidsFraction)
+        fail(c, "species.count", "the particles fill " + std::to_string(solids / volume) + " of " + what + "; random placement needs at most " +
+                                     std::to_string(kMaxRandomSolidsFraction) + " (enlarge the domain or region)");
+    };
+    double placed_diameter = 0.0, solids = 0.0;
+    for (const auto& species : c.species) {
+      if (species.region_lo) {
+        if (c.particles.init != "random")
+          fail(c, "species.region_lo", "species '" + species.name + "': a species' own region is for init = \"random\"");
+        check_region(*species.region_lo, *species.region_hi, species.diameter,
+                     species.count * ball_measure(dim, 0.5 * species.diameter), "species.region_lo", "species.region_hi",
+                     "species '" + species.name + "''s placement region");
+        continue;
+      }
       if (!species.position && species.count > 0) placed_diameter = std::max(placed_diameter, species.diameter);
-    for (int axis = 0; axis < dim; ++axis) {
-      if (lo[axis] < c.domain.lo[axis] || hi[axis] > c.domain.hi[axis])
-        fail(c, "particles.region_lo", "the placement region must lie inside the domain");
-      // Along a periodic axis centres go anywhere (no face to keep clear of).
-      if (!c.domain.periodic(axis) && !(hi[axis] - lo[axis] > placed_diameter))
-        fail(c, "particles.region_hi",
-             "the placement region must be wider than the largest diameter placed at random on every bounded axis");
-      if (!(hi[axis] > lo[axis])) fail(c, "particles.region_hi", "the placement region must have a positive extent");
+      solids += species.count * ball_measure(dim, 0.5 * species.diameter);
     }
-    double volume = 1.0;  // an area in 2D
-    for (int axis = 0; axis < dim; ++axis) volume *= hi[axis] - lo[axis];
-    double solids = 0.0;
-    for (const auto& s : c.species) solids += s.count * ball_measure(dim, 0.5 * s.diameter);
-    if (c.particles.init == "random" && solids / volume > kMaxRandomSolidsFraction)
-      fail(c, "species.count", "the particles fill " + std::to_string(solids / volume) +
-                                   " of the placement region; random placement needs at most " +
-                                   std::to_string(kMaxRandomSolidsFraction) + " (enlarge the domain or region)");
+    check_region(lo, hi, placed_diameter, solids, "particles.region_lo", "particles.region_hi", "the placement region");
     if (c.particles.init == "lattice") {
       const double spacing = c.particles.lattice_spacing * d.max_diameter;
       double sites = 1;  // counted in double: a huge region must not overflow an integer

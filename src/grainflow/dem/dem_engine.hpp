@@ -42,7 +42,10 @@ struct EnergyTally {
   double contact_work = 0.0;  // J, all contact forces' work on the free particles (walls' and bumps' included)
   double wall_work = 0.0;     // J, moving walls' and bumps' work: their velocity times the force they exert
   double growth_work = 0.0;   // J, the normal forces' work as radii grow (radius expansion pushes contacts apart)
-  double contact_power = 0.0, wall_power = 0.0, growth_power = 0.0;  // W
+  // J, Lees–Edwards boundaries: the contact forces across the sliding seam times the rows'
+  // velocity jump (part of contact_work), and the kinetic energy a particle gains crossing the seam
+  double seam_contact_work = 0.0, seam_crossing_work = 0.0;
+  double contact_power = 0.0, wall_power = 0.0, growth_power = 0.0, seam_power = 0.0;  // W
   double start_energy = 0.0;            // J, kinetic + rotational + bounded potential + elastic at the start
   double start_elastic = 0.0;           // J, the springs' part of it
   double start_periodic_potential = 0.0;  // J
@@ -103,6 +106,7 @@ class DemEngine {
     if (walls != s_.walls.size()) throw RunError("checkpoint: the case has a different number of walls");
     for (auto& wall : s_.walls) ar(wall.position, wall.velocity);
     ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_, energy_);
+    if (s_.box.sheared()) ar(s_.box.shear_offset, s_.box.shear_turns, offset_at_build_);
     if (domain_) ar(*domain_);  // MPI: a restart runs on as many ranks (checked before)
   }
 
@@ -147,7 +151,7 @@ class DemEngine {
         const Vec3 d = p.position[i] - xj;
         const double r = norm(d);
         if (!pair_in_contact(r * r, i, j, true) || r == 0.0) continue;
-        const ContactKinematics c = pair_kinematics(i, j, d, r);
+        const ContactKinematics c = pair_kinematics(i, j, d, r, s_.box.image_velocity(pairs_.shift[k]));
         const int bump_face = std::max(p.wall[i], p.wall[j]);
         State memory = contacts_.pair_state[k];
         const ContactForce f = Law::force(bump_face < 0 ? pair_params_ : bump_params_[bump_face], law_state(memory), c, 0.0);
@@ -230,14 +234,14 @@ class DemEngine {
   }
 
   // The kinematics of the touching pair i, j: d = x_i - x_j (j's image nearest i), r = |d|; velocities
-  // as they are now (half-step inside a step).
-  ContactKinematics pair_kinematics(std::size_t i, std::size_t j, const Vec3& d, double r) const {
+  // as they are now (half-step inside a step), j's image moving `image_velocity` faster than j.
+  ContactKinematics pair_kinematics(std::size_t i, std::size_t j, const Vec3& d, double r, const Vec3& image_velocity) const {
     const ParticleStore& p = s_.particles;
     const double ri = p.radius[i], rj = p.radius[j];
     ContactKinematics c;
     c.normal = d * (1.0 / r);
     c.overlap = ri + rj - r;
-    const Vec3 relative = p.velocity[i] - p.velocity[j];
+    const Vec3 relative = p.velocity[i] - (p.velocity[j] + image_velocity);
     c.normal_velocity = dot(relative, c.normal);
     c.slip_velocity = relative - c.normal_velocity * c.normal -
                       cross(ri * p.angular_velocity[i] + rj * p.angular_velocity[j], c.normal);
@@ -300,6 +304,7 @@ class DemEngine {
   NeighborPairs pairs_;
   ContactStore<State> contacts_;
   std::vector<Vec3> position_at_build_;
+  double offset_at_build_ = 0.0;  // m, the Lees–Edwards offset the list was built at
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;  // per thread: shares for others' particles (kept zero)
   std::vector<std::vector<std::uint32_t>> thread_touched_;       // per thread: where those shares are
   std::array<int, 6> bump_wall_{};      // wall carrying each face's bumps, -1 when they stand still

@@ -62,9 +62,11 @@ observe::EnergyBudget DemEngine<Law, Rolling>::energy_budget() const {
   const double elastic = elastic_energy();
   b.gravity_work = energy_.start_periodic_potential - observe::periodic_potential(s_.particles, s_.box, s_.gravity);
   b.wall_work = energy_.wall_work;
+  b.boundary_work = energy_.seam_contact_work + energy_.seam_crossing_work;
   b.growth_work = energy_.growth_work;
   b.change = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) + elastic - energy_.start_energy;
-  const double relative_work = energy_.contact_work - energy_.wall_work;  // on the contacts' relative motion
+  // on the contacts' relative motion
+  const double relative_work = energy_.contact_work - energy_.wall_work - energy_.seam_contact_work;
   b.dissipated = energy_.growth_work - relative_work - (elastic - energy_.start_elastic);
   return b;
 }
@@ -83,7 +85,8 @@ void DemEngine<Law, Rolling>::portable_share(PortableParticles& particles, Porta
     for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
       if (contacts_.pair_touching[k]) {
         const std::uint32_t j = pairs_.partner[k];
-        contacts.pairs.push_back({p.id[i], p.id[j], ContactStore<State>::image_key(pairs_.shift[k], p.image[i], p.image[j]),
+        contacts.pairs.push_back({p.id[i], p.id[j],
+                                  ContactStore<State>::image_key(pairs_.shift[k], p.image[i], p.image[j], s_.box.shear_turns),
                                   contacts_.pair_state[k]});
       }
     for (std::size_t w = 0; w < contacts_.wall_state.size(); ++w)
@@ -97,7 +100,7 @@ void DemEngine<Law, Rolling>::portable_share(PortableParticles& particles, Porta
 template <class Law, bool Rolling>
 void DemEngine<Law, Rolling>::restore_portable(const PortableParticles& particles, const Portable& contacts, bool totals_here) {
   ParticleStore& p = s_.particles;
-  contacts_.restore(contacts.pairs, pairs_, p.id, p.image);
+  contacts_.restore(contacts.pairs, pairs_, p.id, p.image, s_.box.shear_turns);
   std::vector<std::int64_t> index(particles.particles.size(), -1);
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.id[i] < index.size()) index[p.id[i]] = static_cast<std::int64_t>(i);
@@ -136,16 +139,18 @@ void DemEngine<Law, Rolling>::step() {
     if (p.motion[i] == Motion::free && !p.ghost[i]) p.position[i] += dt * p.velocity[i];
   s_.time = (s_.step + 1) * dt;  // no accumulated round-off in the clock
   ++s_.step;
+  if (s_.box.sheared()) s_.box.shear_offset = s_.box.shear_velocity * s_.time - s_.box.shear_turns * s_.box.length(0);
   move_walls();
   energy_.growth_work += dt * energy_.growth_power;  // this step's growth against the forces before it
   grow_radii();
   if (domain_) domain_->refresh(p);  // ghosts take their owners' new positions and velocities
   if (domain_ ? domain_->any(needs_rebuild()) : needs_rebuild()) rebuild(false);
-  const double contact_before = energy_.contact_power, wall_before = energy_.wall_power;
+  const double contact_before = energy_.contact_power, wall_before = energy_.wall_power, seam_before = energy_.seam_power;
   compute_forces(dt);
   energy_.contact_power = half_kick(true);
   energy_.contact_work += 0.5 * dt * (contact_before + energy_.contact_power);
   energy_.wall_work += 0.5 * dt * (wall_before + energy_.wall_power);
+  energy_.seam_contact_work += 0.5 * dt * (seam_before + energy_.seam_power);
 }
 
 template <class Law, bool Rolling>
@@ -158,7 +163,7 @@ void DemEngine<Law, Rolling>::compute_forces(double history_dt) {
     p.force[i] = p.motion[i] == Motion::free ? p.mass[i] * s_.gravity : Vec3{};
     p.torque[i] = Vec3{};
   }
-  energy_.wall_power = energy_.growth_power = 0.0;
+  energy_.wall_power = energy_.growth_power = energy_.seam_power = 0.0;
   pair_forces(history_dt);
   wall_forces(history_dt);
 }
@@ -282,7 +287,11 @@ void DemEngine<Law, Rolling>::grow_radii() {
 template <class Law, bool Rolling>
 bool DemEngine<Law, Rolling>::needs_rebuild() const {
   const ParticleStore& p = s_.particles;
-  const double limit = 0.25 * s_.skin * s_.skin;  // (skin / 2)^2
+  // A pair's separation changes by at most both displacements plus, across a Lees–Edwards seam,
+  // the rows' slide since the build: the list holds while that stays within the skin.
+  const double slack = s_.skin - std::fabs(s_.box.shear_offset - offset_at_build_);
+  if (!(slack > 0.0)) return true;
+  const double limit = 0.25 * slack * slack;  // (slack / 2)^2
   const std::size_t n = p.size();
   int moved = 0;
 #pragma omp parallel for num_threads(threads_) schedule(static) reduction(| : moved)
@@ -305,8 +314,22 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
   // before the new one is built, so that the peak memory holds one list, not two. Until here the
   // particles are in the old list's order and unwrapped as when it was built.
   std::vector<typename ContactStore<State>::KeptPair> kept;
-  if (!first) kept = contacts_.take_touching(pairs_, p.id, p.image);
-  for (std::size_t i = 0; i < p.size(); ++i) s_.box.wrap(p.position[i], p.image[i]);
+  if (!first) kept = contacts_.take_touching(pairs_, p.id, p.image, s_.box.shear_turns);
+  if (s_.box.sheared()) {
+    // The offset back within one width (the turns go into the images' keys), and particles that
+    // left through a y face into the sliding row: their kinetic energy's jump is the seam's work.
+    const double length = s_.box.length(0), slid = s_.box.shear_velocity * s_.time;
+    s_.box.shear_turns = static_cast<std::int32_t>(std::floor(slid / length));
+    s_.box.shear_offset = slid - s_.box.shear_turns * length;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double before = p.velocity[i].x;
+      s_.box.wrap(p.position[i], p.image[i], &p.velocity[i]);
+      if (p.counted(i)) energy_.seam_crossing_work += 0.5 * p.mass[i] * (p.velocity[i].x * p.velocity[i].x - before * before);
+    }
+    offset_at_build_ = s_.box.shear_offset;
+  } else {
+    for (std::size_t i = 0; i < p.size(); ++i) s_.box.wrap(p.position[i], p.image[i]);
+  }
   const std::size_t expected_pairs = pairs_.pair_count();
   pairs_ = NeighborPairs{};
   if (domain_) {
@@ -326,7 +349,7 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
   // Pairs within skin of touching, and of an adhesive neck's length further: every pair in contact
   // until the next rebuild (no particle moves more than skin / 2 before it).
   grid_.build_pairs(p, s_.box, s_.skin + s_.cohesion_reach, threads_, pairs_, expected_pairs);
-  contacts_.restore(kept, pairs_, p.id, p.image);
+  contacts_.restore(kept, pairs_, p.id, p.image, s_.box.shear_turns);
   position_at_build_ = p.position;
   ++stats_.rebuilds;
 }
@@ -359,9 +382,10 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
   }
   double max_ratio = stats_.max_overlap_ratio;
   long contacts = 0, begun = 0;
-  double bump_power = 0.0, growth_power = 0.0;
+  double bump_power = 0.0, growth_power = 0.0, seam_power = 0.0;
   const double growth_rate = s_.expansion_rate;
-#pragma omp parallel num_threads(threads) reduction(max : max_ratio) reduction(+ : contacts, begun, bump_power, growth_power)
+  const double seam_velocity = s_.box.shear_velocity;
+#pragma omp parallel num_threads(threads) reduction(max : max_ratio) reduction(+ : contacts, begun, bump_power, growth_power, seam_power)
   {
 #ifdef _OPENMP
     const int t = omp_get_thread_num();
@@ -395,7 +419,8 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
           contacts_.pair_state[k] = State{};
           begun += counted;
         }
-        const ContactKinematics c = pair_kinematics(i, j, d, std::sqrt(r2));
+        const std::uint8_t code = pairs_.shift[k];
+        const ContactKinematics c = pair_kinematics(i, j, d, std::sqrt(r2), s_.box.image_velocity(code));
         const int bump_face = std::max(p.wall[i], p.wall[j]);  // -1 unless one is a wall bump
         const Params& params = bump_face < 0 ? pair_params_ : bump_params_[bump_face];
         const ContactForce f = Law::force(params, law_state(contacts_.pair_state[k]), c, dt);
@@ -425,6 +450,8 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
           bump_power += dot(p.wall[i] >= 0 ? -total : total, s_.bump_velocity[bump_face]);
         if (growth_rate > 0.0 && counted) [[unlikely]]
           growth_power += f.normal * growth_rate * ((ri < p.target_radius[i]) + (rj < p.target_radius[j]));
+        if (seam_velocity != 0.0 && counted) [[unlikely]]  // F . (v_j's image - v_j): the seam's work
+          seam_power += total.x * s_.box.image_velocity(code).x;
       }
     }
   }
@@ -444,6 +471,7 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
   stats_.collisions += begun;
   energy_.wall_power += bump_power;
   energy_.growth_power += growth_power;
+  energy_.seam_power += seam_power;
 }
 
 template <class Law, bool Rolling>

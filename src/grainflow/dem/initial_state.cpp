@@ -124,7 +124,6 @@ void place_lattice(const CaseConfig& c, DemState& s, std::mt19937_64& rng, doubl
 // the nearest-neighbor distance; radii grow back at one constant rate over `expansion_time` s
 // (section 2.2: particles.expansion_time or its default, DerivedQuantities::expansion_time).
 void place_random(const CaseConfig& c, double expansion_time, DemState& s, std::mt19937_64& rng) {
-  const Vec3 lo = region_lo(c), hi = region_hi(c);
   const auto sequence = species_sequence(c, rng);
   const std::size_t first = s.particles.size();
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -146,6 +145,8 @@ void place_random(const CaseConfig& c, double expansion_time, DemState& s, std::
                    c.species[sp].frozen ? Motion::frozen : Motion::free);
       continue;
     }
+    const Vec3 lo = c.species[sp].region_lo.value_or(region_lo(c));
+    const Vec3 hi = c.species[sp].region_hi.value_or(region_hi(c));
     long draws = 0;
     do {
       if (++draws > 100000)
@@ -179,7 +180,9 @@ void place_random(const CaseConfig& c, double expansion_time, DemState& s, std::
       const std::uint32_t j = near.partner[k];
       const double distance = norm(p.position[i] - (p.position[j] + shifts[near.shift[k]]));
       const double ti = p.target_radius[i], tj = p.target_radius[j];
-      if (p.motion[i] != Motion::free) {
+      if (p.motion[i] != Motion::free && p.motion[j] != Motion::free) {
+        continue;  // two fixed spheres never interact: a random base may overlap itself
+      } else if (p.motion[i] != Motion::free) {
         allowed[j] = std::min(allowed[j], distance - ti);  // a fixed partner does not shrink
       } else if (p.motion[j] != Motion::free) {
         allowed[i] = std::min(allowed[i], distance - tj);
@@ -249,6 +252,7 @@ DemState build_dem_state(const CaseConfig& c) {
   s.box.hi = c.domain.hi;
   for (int axis = 0; axis < 3; ++axis) s.box.periodic[axis] = c.domain.periodic(axis);
   if (s.dimension == 2) s.box.periodic[2] = false;  // the discs' plane: no images along z
+  s.box.shear_velocity = c.lees_edwards_rate * c.domain.length(1);
   s.gravity = c.gravity;
   s.time_step = d.time_step;
   s.skin = d.skin;
@@ -265,8 +269,13 @@ DemState build_dem_state(const CaseConfig& c) {
     place_random(c, d.expansion_time, s, rng);
   }
   thermalise(c, s, rng);
+  if (c.lees_edwards_rate != 0.0)  // the homogeneous shear profile, zero at mid-height (as edmd starts)
+    for (std::size_t i = 0; i < s.particles.size(); ++i)
+      if (s.particles.motion[i] == Motion::free)
+        s.particles.velocity[i].x += c.lees_edwards_rate * (s.particles.position[i].y - 0.5 * (c.domain.lo.y + c.domain.hi.y));
   if (s.dimension == 2) confine_to_plane(c, s);
-  for (std::size_t i = 0; i < s.particles.size(); ++i) s.box.wrap(s.particles.position[i], s.particles.image[i]);
+  for (std::size_t i = 0; i < s.particles.size(); ++i)
+    s.box.wrap(s.particles.position[i], s.particles.image[i], &s.particles.velocity[i]);
   return s;
 }
 

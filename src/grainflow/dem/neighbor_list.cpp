@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "grainflow/core/cell_counts.hpp"
 
@@ -34,6 +35,10 @@ void CellGrid::setup_region(const PeriodicBox& box, const Vec3& lo, const Vec3& 
     if (wraps_[axis] && cells_[axis] == 1)
       reach_[axis] = std::clamp(static_cast<int>(std::ceil(cell_size / lengths[axis] - 1e-12)), 1, PeriodicBox::kMaxImage);
   }
+  // The sliding rows' search takes four distinct cells along x and three along y (the case checks
+  // keep those widths; the guard is for a grid widened to bound its cell count).
+  if (box.sheared() && (cells_[0] < 4 || cells_[1] < 3 || cut[0] || cut[1]))
+    throw std::logic_error("CellGrid: Lees-Edwards boundaries need 4 cells along x and 3 along y on one rank");
 }
 
 int CellGrid::cell_of(const Vec3& x) const {
@@ -107,11 +112,20 @@ void CellGrid::search(const ParticleStore& p, const PeriodicBox& box, double ski
         int sy = 0;
         const int cy = wrap(1, ci[1] + dy, sy);
         if (cy < 0) continue;
-        for (int dx = -reach_[0]; dx <= reach_[0]; ++dx) {
+        // Across a Lees–Edwards seam the row of cells stands offset along x: the four cells under
+        // [x_i - offset - cell, x_i - offset + cell] hold every image within reach.
+        int first_x = ci[0] - reach_[0], last_x = ci[0] + reach_[0];
+        double row_offset = 0.0;
+        if (sy != 0 && box.sheared()) {
+          row_offset = sy * box.shear_offset;
+          first_x = static_cast<int>(std::floor(ci[0] - row_offset * inv_size_[0])) - 1;
+          last_x = first_x + 3;
+        }
+        for (int cx_raw = first_x; cx_raw <= last_x; ++cx_raw) {
           int sx = 0;
-          const int cx = wrap(0, ci[0] + dx, sx);
+          const int cx = wrap(0, cx_raw, sx);
           if (cx < 0) continue;
-          const Vec3 shift{sx * length[0], sy * length[1], sz * length[2]};
+          const Vec3 shift{sx * length[0] + row_offset, sy * length[1], sz * length[2]};
           const std::uint8_t code = PeriodicBox::shift_code(sx, sy, sz);
           const int neighbor = cx + cells_[0] * (cy + cells_[1] * cz);
           for (std::uint32_t k = start_[neighbor]; k < start_[neighbor + 1]; ++k) {
@@ -197,6 +211,7 @@ void build_pairs_all(const ParticleStore& p, const PeriodicBox& box, double skin
     reach[axis] = box.periodic[axis] ? std::clamp(static_cast<int>(std::ceil(cutoff_max / box.length(axis))), 1,
                                                   PeriodicBox::kMaxImage)
                                      : 0;
+  if (box.sheared()) reach[0] = PeriodicBox::kMaxImage;  // the sliding rows stand up to a width further
   const auto shifts = box.shift_table();
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {

@@ -210,6 +210,8 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   if (ranks && c.output.stresses)
     throw InputError(c.path, "output.stresses", "is measured on one MPI rank for now (threads are fine): run it "
                                                 "without mpirun, or set output.stresses = false");
+  if (ranks && c.lees_edwards_rate != 0.0)
+    throw InputError(c.path, "lees_edwards", "runs on one MPI rank for now (threads are fine): run it without mpirun");
   fs::create_directories(options.output_directory);
   dir = options.output_directory;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
