@@ -133,6 +133,62 @@ def elastic_gas_case(dim, side, phi, duration, output, seed=21):
     return text, length
 
 
+PERIODIC_GAS = """[engine]
+kind = "{engine}"
+dimension = {dimension}
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [{box!r}, {box!r}, {depth!r}]
+boundary = {{ x = "periodic", y = "periodic", z = "periodic" }}
+[gravity]
+vector = [0.0, 0.0, 0.0]
+[[species]]
+name = "particle"
+diameter = 1.0
+density = {density!r}
+count = {count}
+[particles]
+init = "lattice"
+initial_temperature = 1.0
+seed = 4
+{law}
+{extra}
+[run]
+duration = {duration!r}
+{steps}
+[output]
+interval = {interval!r}
+average_start = {start!r}
+profile_interval = {profile_interval!r}
+{zones}
+{stresses}
+"""
+
+
+def periodic_gas_case(engine, dimension, count, box, depth, density, law, duration, start, interval,
+                      profile_interval, zone_thickness=None, extra="", steps=""):
+    """A gas of unit-diameter particles on a lattice at temperature 1 in a periodic box without
+    gravity, `law` being its [contact] or [collision] table and `extra` any further tables; strips
+    `zone_thickness` thick along y when given, and the engine's stresses switched on."""
+    stresses = "stresses = true" if engine == "dem" else "collision_stresses = true"
+    zones = f"zone_thickness = {zone_thickness!r}" if zone_thickness is not None else ""
+    return PERIODIC_GAS.format(engine=engine, dimension=dimension, count=count, box=box, depth=depth,
+                               density=density, law=law, extra=extra, duration=duration, steps=steps,
+                               interval=interval, start=start, profile_interval=profile_interval,
+                               zones=zones, stresses=stresses)
+
+
+def run_case_text(exe, folder, name, text):
+    """Writes `text` to folder/name.toml and runs it into folder/name; that output folder, or None
+    after a failed check when the run failed."""
+    case = write_text(os.path.join(folder, f"{name}.toml"), text)
+    out = os.path.join(folder, name)
+    status, _, err = run(exe, "run", case, "-o", out, "--quiet")
+    if not check(status == 0, f"{name}: exited {status}: {err.strip()}"):
+        return None
+    return out
+
+
 GOLDENS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "regression", "seed_goldens.json")
 
 
