@@ -114,6 +114,7 @@ struct ServoConfig {
   bool scale_width = true;           // periodic width follows the gap: the aspect ratio stays fixed
   long long every_collisions = 0;    // update after this many collisions; 0 = 3 N
   double gap_change = 0.0;           // m, or after this gap change; 0 = 0.1 R
+  double interval = 0.0;             // s, or once this long has passed; 0 = never
 };
 
 struct WallConfig {

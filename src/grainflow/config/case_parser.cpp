@@ -333,7 +333,6 @@ void read_servo(TomlReader& top, CaseConfig& c) {
   if (top.has("servo")) {
     TomlReader r = top.table("servo");
     auto& v = c.servo;
-    if (c.engine.kind != "edmd") top.fail("servo", "the pressure-controlled Couette cell is an event-driven (edmd) feature");
     v.enabled = true;
     v.normal_stress = r.required_number("normal_stress");
     if (!(v.normal_stress > 0.0)) r.fail("normal_stress", "must be positive");
@@ -346,9 +345,13 @@ void read_servo(TomlReader& top, CaseConfig& c) {
     if (v.every_collisions < 0) r.fail("every_collisions", "must not be negative");
     v.gap_change = r.number("gap_change", 0.0);
     if (v.gap_change < 0.0) r.fail("gap_change", "must not be negative");
+    v.interval = r.number("interval", 0.0);
+    if (v.interval < 0.0) r.fail("interval", "must not be negative");
     if (c.domain.faces[2] != FaceKind::wall || c.domain.faces[3] != FaceKind::wall)
       r.fail("normal_stress", "the servo moves the walls at ylo and yhi: both must be \"wall\"");
     if (!c.domain.periodic(0)) r.fail("scale_width", "the Couette cell needs a periodic x axis (the flow direction)");
+    if (c.walls[3].velocity == c.walls[2].velocity)
+      top.fail("walls.yhi.velocity", "the Couette servo needs the walls to move relative to each other (U_T sets its units)");
     r.reject_unknown_keys();
   }
 }

@@ -167,6 +167,7 @@ void write_optional_tables(Out& o, const CaseConfig& c) {
     o.key("scale_width", v.scale_width);
     o.key("every_collisions", v.every_collisions);
     o.key("gap_change", v.gap_change);
+    if (v.interval > 0.0) o.key("interval", v.interval);
   }
   if (c.lees_edwards_rate != 0.0) {
     o.table("lees_edwards");

@@ -59,6 +59,18 @@ void validate_lees_edwards(const CaseConfig& c, const dem::DerivedQuantities& d)
                              " m: diameter + skin) high along y");
 }
 
+// The Couette servo with soft particles: the flat walls at ylo and yhi are steered along y; the
+// periodic width stays, and nothing else may move those walls along y.
+void validate_servo(const CaseConfig& c) {
+  if (c.servo.scale_width)
+    fail(c, "servo.scale_width", "the DEM engine keeps its periodic width: set scale_width = false");
+  if (c.drive.enabled && (c.drive.face == 2 || c.drive.face == 3))
+    fail(c, "drive.face", "the servo moves the walls at ylo and yhi: a drive may not move them as well");
+  for (int f : {2, 3})
+    if (c.walls[f].velocity.y != 0.0)
+      fail(c, std::string("walls.") + kFaceNames[f] + ".velocity", "the servo sets the walls' speeds along y: give 0");
+}
+
 }  // namespace
 
 void validate_dem_case(const CaseConfig& c) {
@@ -69,6 +81,7 @@ void validate_dem_case(const CaseConfig& c) {
   });
   const dem::DerivedQuantities d = dem::derive(c);
   if (c.lees_edwards_rate != 0.0) validate_lees_edwards(c, d);
+  if (c.servo.enabled) validate_servo(c);
 
   if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");
   if (d.law_problem) fail(c, "contact." + d.law_problem->key, d.law_problem->reason);

@@ -15,6 +15,7 @@
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/contact_kinematics.hpp"
 #include "grainflow/dem/contact_store.hpp"
+#include "grainflow/dem/dem_couette_servo.hpp"
 #include "grainflow/dem/domain_exchange.hpp"
 #include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/fault_checks.hpp"
@@ -91,6 +92,7 @@ class DemEngine {
   const DemState& state() const { return s_; }
   const ContactStore<State>& contacts() const { return contacts_; }
   const NeighborPairs& pairs() const { return pairs_; }
+  const DemCouetteServo& servo() const { return servo_; }
   ContactStatistics& statistics() { return stats_; }
   // The MPI side of the engine, or null on one rank.
   const DomainExchange<State>* domain() const { return domain_.get(); }
@@ -107,6 +109,11 @@ class DemEngine {
     for (auto& wall : s_.walls) ar(wall.position, wall.velocity);
     ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_, energy_);
     if (s_.box.sheared()) ar(s_.box.shear_offset, s_.box.shear_turns, offset_at_build_);
+    if (servo_.enabled()) {
+      for (auto& wall : s_.walls) wall.motion.serialize(ar);
+      ar(wall_force_);
+      servo_.serialize(ar);
+    }
     if (domain_) ar(*domain_);  // MPI: a restart runs on as many ranks (checked before)
   }
 
@@ -291,6 +298,10 @@ class DemEngine {
   void pair_forces(double dt);
 
   void wall_forces(double dt);
+  // The Couette servo after a step: the walls' impulse, and an update when one is due.
+  void servo_step(double dt);
+  // The normal force the particles exert on wall w at the last force evaluation (N; N/m for discs).
+  double wall_load(int w) const { return dot(wall_force_[w], s_.walls[w].normal()); }
 
   DemState s_;
   Params pair_params_;
@@ -307,6 +318,8 @@ class DemEngine {
   double offset_at_build_ = 0.0;  // m, the Lees–Edwards offset the list was built at
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;  // per thread: shares for others' particles (kept zero)
   std::vector<std::vector<std::uint32_t>> thread_touched_;       // per thread: where those shares are
+  std::vector<Vec3> wall_force_;        // N, each flat wall's force on the particles at the last evaluation
+  DemCouetteServo servo_;
   std::array<int, 6> bump_wall_{};      // wall carrying each face's bumps, -1 when they stand still
   std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps
   RollingSetup rolling_;                         // Rolling only

@@ -50,6 +50,8 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
   rebuild(true);
   // The initial evaluation must not advance contact histories (no time has passed): dt = 0.
   compute_forces(0.0);
+  servo_ = DemCouetteServo(s_);
+  if (servo_.enabled()) servo_.start_loads(wall_load(servo_.bottom_wall()), wall_load(servo_.top_wall()));
   energy_.contact_power = contact_power();
   energy_.start_elastic = elastic_energy();
   energy_.start_energy = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) + energy_.start_elastic;
@@ -151,6 +153,21 @@ void DemEngine<Law, Rolling>::step() {
   energy_.contact_work += 0.5 * dt * (contact_before + energy_.contact_power);
   energy_.wall_work += 0.5 * dt * (wall_before + energy_.wall_power);
   energy_.seam_contact_work += 0.5 * dt * (seam_before + energy_.seam_power);
+  if (servo_.enabled()) servo_step(dt);
+}
+
+template <class Law, bool Rolling>
+void DemEngine<Law, Rolling>::servo_step(double dt) {
+  servo_.add_loads(dt, wall_load(servo_.bottom_wall()), wall_load(servo_.top_wall()));
+  if (!servo_.due(s_, stats_.collisions)) {
+    servo_.observe(s_);
+    return;
+  }
+  const Vec3 bottom = s_.walls[servo_.bottom_wall()].velocity, top = s_.walls[servo_.top_wall()].velocity;
+  servo_.update(s_, stats_.collisions);
+  // The walls move at their new speeds from now: the next step's work starts from this power.
+  energy_.wall_power += dot(wall_force_[servo_.bottom_wall()], s_.walls[servo_.bottom_wall()].velocity - bottom) +
+                        dot(wall_force_[servo_.top_wall()], s_.walls[servo_.top_wall()].velocity - top);
 }
 
 template <class Law, bool Rolling>
@@ -482,15 +499,17 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
   double max_ratio = stats_.max_overlap_ratio;
   double wall_power = 0.0, growth_power = 0.0;
   const double growth_rate = s_.expansion_rate;
+  wall_force_.resize(s_.walls.size());
   for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+    double fx = 0.0, fy = 0.0, fz = 0.0;
     const FlatWall& wall = s_.walls[w];
     const Params& params = wall_params_[w];
     auto& states = contacts_.wall_state[w];
     auto& touching = contacts_.wall_touching[w];
     Vec3 normal;
     normal[wall.axis] = wall.inward;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : wall_contacts, begun, wall_power, growth_power) \
-  reduction(max : max_ratio)
+#pragma omp parallel for num_threads(threads_) schedule(static) \
+  reduction(+ : wall_contacts, begun, wall_power, growth_power, fx, fy, fz) reduction(max : max_ratio)
     for (std::size_t i = 0; i < n; ++i) {
       if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
       const double ri = p.radius[i];
@@ -513,10 +532,14 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
         p.torque[i] += RollingResistance::torque(rolling_.walls[w], states[i].rolling,
                                                  rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal), dt);
       wall_power += dot(total, wall.velocity);
+      fx += total.x;
+      fy += total.y;
+      fz += total.z;
       if (growth_rate > 0.0 && ri < p.target_radius[i]) growth_power += f.normal * growth_rate;
       max_ratio = std::max(max_ratio, c.overlap / (2.0 * ri));
       ++wall_contacts;
     }
+    wall_force_[w] = {fx, fy, fz};
   }
   stats_.wall_contacts = wall_contacts;
   stats_.wall_collisions += begun;

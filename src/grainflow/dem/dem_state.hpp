@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "grainflow/config/case_config.hpp"
+#include "grainflow/config/couette_servo_rule.hpp"
 #include "grainflow/core/face_wall.hpp"
 #include "grainflow/core/periodic_box.hpp"
 #include "grainflow/dem/wall_motion.hpp"
@@ -46,6 +47,7 @@ struct DemState {
   std::array<Vec3, 6> bump_displacement{};  // m, displacement applied so far to each face's bumps
   double expansion_rate = 0.0;              // m/s of radius growth (section 2.2), 0 when done
   std::vector<SpeciesConfig> species;
+  CouetteServoRule servo;  // pressure-controlled walls at ylo and yhi, when servo.config.enabled
 };
 
 DemState build_dem_state(const CaseConfig& c);

@@ -258,6 +258,7 @@ DemState build_dem_state(const CaseConfig& c) {
   s.skin = d.skin;
   s.cohesion_reach = d.cohesion_reach;
   s.species = c.species;
+  s.servo = CouetteServoRule::from_case(c, s.dimension);
   add_walls(c, s);
   add_bumps(c, s);
   std::mt19937_64 rng(c.particles.seed);

@@ -21,7 +21,7 @@ double drive_displacement(double amplitude, double omega, double phase, double r
 }  // namespace
 
 Vec3 WallMotion::velocity(double t) const {
-  Vec3 v = constant_velocity_;
+  Vec3 v = constant_velocity_ + steered_velocity_;
   if (!drive_.enabled) return v;
   const double tau = t - drive_.start;
   if (tau <= 0.0) return v;
@@ -34,7 +34,7 @@ Vec3 WallMotion::velocity(double t) const {
 }
 
 Vec3 WallMotion::displacement(double t) const {
-  Vec3 x = constant_velocity_ * t;
+  Vec3 x = constant_velocity_ * t + steered_displacement(t);
   if (!drive_.enabled) return x;
   const double tau = t - drive_.start;
   for (int axis = 0; axis < 3; ++axis) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "grainflow/config/couette_servo_rule.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 #include "grainflow/edmd/event_counters.hpp"
 
@@ -50,9 +51,11 @@ class CouetteServo {
 
   void add_normal_impulse(int wall, double impulse) { wall_normal_impulse_[wall] += impulse; }
 
-  // After every servo.every_collisions collisions, or once the gap has changed by servo.gap_change.
+  // After every servo.every_collisions collisions, once the gap has changed by servo.gap_change, or
+  // at the first event once servo.interval has passed.
   bool due(const EdmdState& s, long long collisions) const {
-    return collisions - collisions_ >= s.servo.every_collisions || std::fabs(gap_at(s, s.time) - gap_) >= s.servo.gap_change;
+    return collisions - collisions_ >= s.servo.every_collisions || std::fabs(gap_at(s, s.time) - gap_) >= s.servo.gap_change ||
+           (s.servo.interval > 0.0 && s.time - since_ >= s.servo.interval);
   }
 
   // Listing COL002: v <- v/2 + (sigma_measured - sigma_target), in Campbell's units (U_T for speeds,
@@ -64,9 +67,7 @@ class CouetteServo {
     double area = s.box.length(0);
     if (dim == 3) area *= s.box.length(2);
     stress_ = 0.5 * (wall_normal_impulse_[bottom_wall_] + wall_normal_impulse_[top_wall_]) / (span * area);
-    const double target = s.servo.normal_stress / s.stress_unit;
-    const double speed = 0.5 * state_.wall_speed / s.speed_unit + (stress_ / s.stress_unit - target);
-    speed_ = std::clamp(speed, -target, target) * s.speed_unit;
+    speed_ = rule(s).wall_speed(state_.wall_speed, stress_);
     return true;
   }
 
@@ -94,16 +95,7 @@ class CouetteServo {
   // jump in the top wall's speed that heats the top side only. With "both" the walls' speeds change
   // by half the jump each, in opposite senses, and the walls' mean velocity stays.
   void keep_shear_rate(EdmdState& s) const {
-    double& bottom = s.walls[bottom_wall_].velocity.x;
-    double& top = s.walls[top_wall_].velocity.x;
-    const double relative = shear_rate_ * new_gap_;
-    if (s.servo.shear_rate_walls == "top") {
-      top = bottom + relative;
-      return;
-    }
-    const double mean = 0.5 * (bottom + top);
-    bottom = mean - 0.5 * relative;
-    top = mean + 0.5 * relative;
+    rule(s).keep_shear_rate(s.walls[bottom_wall_].velocity.x, s.walls[top_wall_].velocity.x, shear_rate_ * new_gap_);
   }
 
   // The update's record, once the box has its new width; impulses count afresh from here.
@@ -122,6 +114,8 @@ class CouetteServo {
   }
 
  private:
+  static CouetteServoRule rule(const EdmdState& s) { return {s.servo, s.speed_unit, s.stress_unit}; }
+
   double width_ref_ = 0.0, width_rate_ = 0.0, width_since_ = 0.0;  // the periodic width L(t)
   std::vector<double> wall_normal_impulse_;  // kg m/s into each wall since the last update
   int bottom_wall_ = -1, top_wall_ = -1;

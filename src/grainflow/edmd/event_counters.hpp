@@ -1,6 +1,8 @@
 // What an event-driven run counts as it goes, and the Couette servo's last measurement.
 #pragma once
 
+#include "grainflow/config/couette_servo_rule.hpp"
+
 namespace grainflow::edmd {
 
 struct EventCounters {
@@ -29,12 +31,6 @@ struct EventCounters {
 };
 
 // The pressure-controlled Couette cell as last measured (section 2.14.3).
-struct ServoState {
-  double gap = 0.0;              // m, distance between the wall planes
-  double width = 0.0;            // m, periodic control-volume width
-  double wall_speed = 0.0;       // m/s, opening speed of each wall (> 0 apart)
-  double measured_stress = 0.0;  // N/m (2D) or Pa (3D), mean normal stress on the walls over the last period
-  double top_speed = 0.0;        // m/s, tangential speed of the top wall
-};
+using ServoState = CouetteServoState;
 
 }  // namespace grainflow::edmd

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "grainflow/core/error.hpp"
+#include "grainflow/config/couette_servo_rule.hpp"
 #include "grainflow/config/face_kinds.hpp"
 #include "grainflow/config/species_sequence.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
@@ -213,17 +214,11 @@ EdmdState build_edmd_state(const CaseConfig& c) {
     wall.restitution.value = w.restitution >= 0.0 ? w.restitution : c.collision.wall_restitution;
     s.walls.push_back(wall);
   }
-  s.servo = c.servo;
+  const CouetteServoRule servo = CouetteServoRule::from_case(c, s.dimension);
+  s.servo = servo.config;
+  s.speed_unit = servo.speed_unit;
+  s.stress_unit = servo.stress_unit;
   s.lees_edwards_rate = c.lees_edwards_rate;
-  if (s.servo.enabled) {
-    const double radius = 0.5 * c.species.front().diameter;
-    const double mass = particle_mass(c.species.front(), c.species.front().diameter, s.dimension);
-    s.speed_unit = std::max(norm(c.walls[3].velocity - c.walls[2].velocity), 1e-300);
-    s.stress_unit = mass * s.speed_unit * s.speed_unit / (radius * radius * (s.dimension == 3 ? radius : 1.0));
-    if (s.servo.every_collisions == 0) s.servo.every_collisions = 3 * static_cast<long long>(
-        [&] { long long n = 0; for (const auto& sp : c.species) n += sp.count; return n; }());
-    if (s.servo.gap_change == 0.0) s.servo.gap_change = 0.1 * radius;
-  }
   std::mt19937_64 rng(c.particles.seed);
   if (c.particles.init == "file") {
     for (const auto& record : c.initial_particles) {

@@ -45,9 +45,10 @@ struct TimeseriesRow {
   long collisions, wall_collisions;  // contacts begun since the start
   observe::EnergyBudget budget;      // since the start, over all ranks
   double budget_residual;
+  CouetteServoState servo;           // the Couette servo's gap and last update, when it runs
 };
 
-void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>& rows) {
+void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>& rows, bool servo) {
   io::write_atomically(path, [&](std::ostream& out) {
     out << "# units: time s, kinetic_energy J, rotational_energy J, granular_temperature m^2/s^2 (about the whole bed's "
            "mean velocity), mass_center_height m, floor_position m, floor_velocity m/s, max_overlap_over_diameter 1, "
@@ -57,17 +58,22 @@ void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>&
            "start: energy_input (gravity along periodic axes, walls, growth), energy_change (kinetic + rotational + "
            "potential + elastic), energy_dissipated J, energy_budget_residual (input - change - dissipated) / "
            "max(|input|, |dissipated|)\n";
+    if (servo) out << "# servo: gap m, wall_speed m/s (> 0 opening), wall_stress as pressure (the last update's), top_speed m/s\n";
     out << "time,kinetic_energy,rotational_energy,granular_temperature,mass_center_height,floor_position,"
            "floor_velocity,max_overlap_over_diameter,contacts,wall_contacts,neighbor_rebuilds,bed_height,"
            "bulk_solids_fraction,ballistic_particles,cell_temperature,zone_temperature,collisions,wall_collisions,energy_input,"
-           "energy_change,energy_dissipated,energy_budget_residual\n";
-    for (const auto& r : rows)
+           "energy_change,energy_dissipated,energy_budget_residual"
+        << (servo ? ",gap,wall_speed,wall_stress,top_speed" : "") << "\n";
+    for (const auto& r : rows) {
       out << r.time << ',' << r.global.kinetic_energy << ',' << r.global.rotational_energy << ','
           << r.global.granular_temperature << ',' << r.global.mass_center_height << ',' << r.floor_position << ','
           << r.floor_velocity << ',' << r.max_overlap_ratio << ',' << r.contacts << ',' << r.wall_contacts << ','
           << r.rebuilds << ',' << r.bed.height << ',' << r.bed.bulk_solids_fraction << ',' << r.bed.ballistic << ','
           << r.global.granular_temperature << ',' << r.zone_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.budget.input() << ','
-          << r.budget.change << ',' << r.budget.dissipated << ',' << r.budget_residual << '\n';
+          << r.budget.change << ',' << r.budget.dissipated << ',' << r.budget_residual;
+      if (servo) out << ',' << r.servo.gap << ',' << r.servo.wall_speed << ',' << r.servo.measured_stress << ',' << r.servo.top_speed;
+      out << '\n';
+    }
   });
 }
 
@@ -212,6 +218,8 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
                                                 "without mpirun, or set output.stresses = false");
   if (ranks && c.lees_edwards_rate != 0.0)
     throw InputError(c.path, "lees_edwards", "runs on one MPI rank for now (threads are fine): run it without mpirun");
+  if (ranks && c.servo.enabled)  // the walls' loads would have to be summed over the ranks at every step
+    throw InputError(c.path, "servo", "runs on one MPI rank for now (threads are fine): run it without mpirun");
   fs::create_directories(options.output_directory);
   dir = options.output_directory;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
@@ -361,6 +369,7 @@ void DemRun::record(E& e) {
   const auto [budget, start_energy] = global_energy_budget(e);
   row.budget = budget;
   row.budget_residual = budget.residual(start_energy);
+  row.servo = e.servo().state();
   e.statistics().max_overlap_ratio = 0.0;
   rows.push_back(row);
   // Radius expansion (section 2.2) overlaps growing spheres on purpose: monitor only after it.
@@ -415,7 +424,7 @@ void DemRun::step_loop(E& e) {
       // Every 30 s of wall time the files so far are written (decided together: tracers gather).
       const auto now = std::chrono::steady_clock::now();
       if (comm.any(now - last_flush > std::chrono::seconds(30))) {
-        if (writes) write_timeseries(dir + "/timeseries.csv", rows);
+        if (writes) write_timeseries(dir + "/timeseries.csv", rows, c.servo.enabled);
         for (auto& o : observers) o->flush(sink);
         last_flush = now;
       }
@@ -501,7 +510,7 @@ void DemRun::write_outputs(E& e) {
   final_budget_scale = start_energy;
   for (auto& o : observers) o->write(last, sink);  // collective: rank 0 writes
   if (!writes) return;  // rank 0 writes the run's other files
-  write_timeseries(dir + "/timeseries.csv", rows);
+  write_timeseries(dir + "/timeseries.csv", rows, c.servo.enabled);
   write_final_state(dir + "/final_state.csv", everyone, st.species);
   write_summary(e, moving, global, migrations, ghosts);
 }
@@ -599,6 +608,12 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
       summary.number("expansion_end_kinetic_energy", grown->global.kinetic_energy + grown->global.rotational_energy);
   }
   summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
+  if (c.servo.enabled) {
+    summary.integer("servo_updates", e.servo().updates());
+    summary.number("wall_gap", e.servo().state().gap);
+    summary.number("cell_width", e.servo().state().width);
+    put(summary, "mean_gap", series_mean(rows, from, [](const TimeseriesRow& r) { return r.servo.gap; }));
+  }
   exit_status = finish_summary(summary, dir, errors, warnings, exit_status, options.echo_errors);
 }
 
