@@ -8,6 +8,7 @@
 #include <string>
 
 #include "grainflow/config/case_checks.hpp"
+#include "grainflow/config/face_kinds.hpp"
 #include "grainflow/core/ball_measure.hpp"
 #include "grainflow/dem/bump_lattice.hpp"
 #include "grainflow/dem/contact_law_registry.hpp"
@@ -35,6 +36,8 @@ void validate_planar(const CaseConfig& c) {
   if (c.gravity.z != 0.0) fail(c, "gravity.vector", "in 2D (discs in the x-y plane) the z component must be 0");
   if (c.drive.enabled && c.drive.amplitude.z != 0.0)
     fail(c, "drive.amplitude", "in 2D (discs in the x-y plane) the z component must be 0");
+  if (c.particles.initial_velocity.z != 0.0)
+    fail(c, "particles.initial_velocity", "in 2D (discs in the x-y plane) the z component must be 0");
   for (int f = 0; f < 4; ++f) {
     const std::string wall = std::string("walls.") + kFaceNames[f];
     if (c.walls[f].velocity.z != 0.0) fail(c, wall + ".velocity", "in 2D (discs in the x-y plane) the z component must be 0");
@@ -82,6 +85,8 @@ void validate_dem_case(const CaseConfig& c) {
   const dem::DerivedQuantities d = dem::derive(c);
   if (c.lees_edwards_rate != 0.0) validate_lees_edwards(c, d);
   if (c.servo.enabled) validate_servo(c);
+  if (c.particles.initial_profile == "couette" && (!holds_wall(c.domain.faces[2]) || !holds_wall(c.domain.faces[3])))
+    fail(c, "particles.initial_profile", "the couette profile needs walls at ylo and yhi");
 
   if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");
   if (d.law_problem) fail(c, "contact." + d.law_problem->key, d.law_problem->reason);

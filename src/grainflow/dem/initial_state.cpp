@@ -7,6 +7,7 @@
 #include "grainflow/core/ball_measure.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/config/face_kinds.hpp"
+#include "grainflow/config/initial_flow.hpp"
 #include "grainflow/config/species_sequence.hpp"
 #include "grainflow/dem/bump_lattice.hpp"
 #include "grainflow/dem/dem_state.hpp"
@@ -231,6 +232,17 @@ void thermalise(const CaseConfig& c, DemState& s, std::mt19937_64& rng) {
     if (p.motion[i] == Motion::free) p.velocity[i] -= drift;
 }
 
+// The mean flow the case starts with, as the event-driven engine does (config/initial_flow.hpp).
+void add_initial_flow(const CaseConfig& c, DemState& s) {
+  ParticleStore& p = s.particles;
+  double height = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.motion[i] == Motion::free) height = std::max(height, p.position[i].y - c.domain.lo.y);
+  const InitialFlow flow(c, height);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.motion[i] == Motion::free) p.velocity[i] += flow.at(p.position[i]);
+}
+
 // Discs keep only their in-plane motion: a z position, z velocity or in-plane spin given in a file
 // (or placed, for a species' own position) is put on the plane, as the event-driven engine does.
 void confine_to_plane(const CaseConfig& c, DemState& s) {
@@ -270,10 +282,7 @@ DemState build_dem_state(const CaseConfig& c) {
     place_random(c, d.expansion_time, s, rng);
   }
   thermalise(c, s, rng);
-  if (c.lees_edwards_rate != 0.0)  // the homogeneous shear profile, zero at mid-height (as edmd starts)
-    for (std::size_t i = 0; i < s.particles.size(); ++i)
-      if (s.particles.motion[i] == Motion::free)
-        s.particles.velocity[i].x += c.lees_edwards_rate * (s.particles.position[i].y - 0.5 * (c.domain.lo.y + c.domain.hi.y));
+  if (c.particles.init != "file") add_initial_flow(c, s);
   if (s.dimension == 2) confine_to_plane(c, s);
   for (std::size_t i = 0; i < s.particles.size(); ++i)
     s.box.wrap(s.particles.position[i], s.particles.image[i], &s.particles.velocity[i]);

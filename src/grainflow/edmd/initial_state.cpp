@@ -8,6 +8,7 @@
 #include "grainflow/core/error.hpp"
 #include "grainflow/config/couette_servo_rule.hpp"
 #include "grainflow/config/face_kinds.hpp"
+#include "grainflow/config/initial_flow.hpp"
 #include "grainflow/config/species_sequence.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 
@@ -150,28 +151,12 @@ void set_velocities(const CaseConfig& c, EdmdState& s, std::mt19937_64& rng) {
     momentum += p.mass[i] * p.velocity[i];
     mass += p.mass[i];
   }
-  // Listing COL007: u = F(z / H) U_max with a seventh-order fit F (F(0) = 0.20 slip, F(1) = 1) of a
-  // chute velocity profile, z the height above the floor and H the lattice height.
-  static constexpr double kChuteFit[8] = {0.2018029, 3.5299215, -15.2262754, 47.4364204,
-                                          -88.1786499, 93.5828476, -51.8336868, 11.4877520};
   double height = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) height = std::max(height, p.position[i].y - c.domain.lo.y);
+  const InitialFlow flow(c, height);
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (c.particles.initial_temperature > 0.0) p.velocity[i] -= momentum * (1.0 / mass);  // fluctuations only
-    if (c.particles.initial_profile == "campbell_chute") {
-      const double z = std::clamp((p.position[i].y - c.domain.lo.y) / height, 0.0, 1.0);
-      double f = 0.0;
-      for (int k = 7; k >= 0; --k) f = f * z + kChuteFit[k];
-      p.velocity[i] += f * c.particles.initial_velocity;
-      continue;
-    }
-    p.velocity[i] += c.particles.initial_velocity;
-    if (c.lees_edwards_rate != 0.0)  // the homogeneous shear profile, zero at mid-height
-      p.velocity[i].x += c.lees_edwards_rate * (p.position[i].y - 0.5 * (c.domain.lo.y + c.domain.hi.y));
-    if (c.particles.initial_profile == "couette") {
-      const double fraction = (p.position[i].y - c.domain.lo.y) / c.domain.length(1);
-      p.velocity[i] += fraction * c.walls[3].velocity + (1.0 - fraction) * c.walls[2].velocity;
-    }
+    p.velocity[i] += flow.at(p.position[i]);
   }
 }
 
