@@ -10,11 +10,8 @@
 #include <stdexcept>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "grainflow/dem/dem_engine.hpp"
+#include "grainflow/dem/thread_slices.hpp"
 
 namespace grainflow::dem {
 
@@ -136,9 +133,10 @@ void DemEngine<Law, Rolling>::step() {
   const double dt = s_.time_step;
   const std::size_t n = p.size();
   half_kick();
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    if (p.motion[i] == Motion::free && !p.ghost[i]) p.position[i] += dt * p.velocity[i];
+  for_each_slice(threads_, n, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+      if (p.motion[i] == Motion::free && !p.ghost[i]) p.position[i] += dt * p.velocity[i];
+  });
   s_.time = (s_.step + 1) * dt;  // no accumulated round-off in the clock
   ++s_.step;
   if (s_.box.sheared()) s_.box.shear_offset = s_.box.shear_velocity * s_.time - s_.box.shear_turns * s_.box.length(0);
@@ -175,11 +173,12 @@ void DemEngine<Law, Rolling>::compute_forces(double history_dt) {
   ParticleStore& p = s_.particles;
   const std::size_t n = p.size();
   // Gravity, and zero for the non-moving.
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    p.force[i] = p.motion[i] == Motion::free ? p.mass[i] * s_.gravity : Vec3{};
-    p.torque[i] = Vec3{};
-  }
+  for_each_slice(threads_, n, [&](int, std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i) {
+      p.force[i] = p.motion[i] == Motion::free ? p.mass[i] * s_.gravity : Vec3{};
+      p.torque[i] = Vec3{};
+    }
+  });
   energy_.wall_power = energy_.growth_power = energy_.seam_power = 0.0;
   pair_forces(history_dt);
   wall_forces(history_dt);
@@ -204,15 +203,14 @@ double DemEngine<Law, Rolling>::half_kick(bool measure) {
   ParticleStore& p = s_.particles;
   const double half = 0.5 * s_.time_step;
   const std::size_t n = p.size();
-  double power = 0.0;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : power)
-  for (std::size_t i = 0; i < n; ++i) {
-    if (p.motion[i] != Motion::free || p.ghost[i]) continue;
-    p.velocity[i] += (half * p.inv_mass[i]) * p.force[i];
-    p.angular_velocity[i] += (half * p.inv_inertia[i]) * p.torque[i];
-    if (measure) power += particle_contact_power(i);
-  }
-  return power;
+  return reduce_slices(threads_, n, 0.0, [&](int, std::size_t begin, std::size_t end, double& power) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (p.motion[i] != Motion::free || p.ghost[i]) continue;
+      p.velocity[i] += (half * p.inv_mass[i]) * p.force[i];
+      p.angular_velocity[i] += (half * p.inv_inertia[i]) * p.torque[i];
+      if (measure) power += particle_contact_power(i);
+    }
+  });
 }
 
 template <class Law, bool Rolling>
@@ -310,10 +308,10 @@ bool DemEngine<Law, Rolling>::needs_rebuild() const {
   if (!(slack > 0.0)) return true;
   const double limit = 0.25 * slack * slack;  // (slack / 2)^2
   const std::size_t n = p.size();
-  int moved = 0;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(| : moved)
-  for (std::size_t i = 0; i < n; ++i)
-    if (!(norm2(p.position[i] - position_at_build_[i]) <= limit)) moved = 1;  // a NaN rebuilds, and is caught there
+  const std::size_t moved = reduce_slices(threads_, n, std::size_t{0}, [&](int, std::size_t begin, std::size_t end, std::size_t& count) {
+    for (std::size_t i = begin; i < end; ++i)
+      count += !(norm2(p.position[i] - position_at_build_[i]) <= limit);  // a NaN rebuilds, and is caught there
+  });
   return moved != 0;
 }
 
@@ -397,22 +395,30 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
     thread_torque_.assign(threads, std::vector<Vec3>(n));
     thread_touched_.assign(threads, {});
   }
-  double max_ratio = stats_.max_overlap_ratio;
-  long contacts = 0, begun = 0;
-  double bump_power = 0.0, growth_power = 0.0, seam_power = 0.0;
+  struct Sums {  // one thread's share of the loop's counts and powers
+    double max_ratio = 0.0, bump_power = 0.0, growth_power = 0.0, seam_power = 0.0;
+    long contacts = 0, begun = 0;
+    Sums& operator+=(const Sums& o) {
+      max_ratio = std::max(max_ratio, o.max_ratio);
+      bump_power += o.bump_power;
+      growth_power += o.growth_power;
+      seam_power += o.seam_power;
+      contacts += o.contacts;
+      begun += o.begun;
+      return *this;
+    }
+  };
+  Sums before;
+  before.max_ratio = stats_.max_overlap_ratio;
   const double growth_rate = s_.expansion_rate;
   const double seam_velocity = s_.box.shear_velocity;
-#pragma omp parallel num_threads(threads) reduction(max : max_ratio) reduction(+ : contacts, begun, bump_power, growth_power, seam_power)
-  {
-#ifdef _OPENMP
-    const int t = omp_get_thread_num();
-#else
-    const int t = 0;
-#endif
-    // Each thread owns a contiguous range of particles and adds to their forces directly; a
-    // partner owned by another thread gets its share in this thread's buffer (a few percent of
-    // the pairs: the particles are sorted by cell, so a range is a slab of space).
-    const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+  // Each thread owns a contiguous range of particles and adds to their forces directly; a
+  // partner owned by another thread gets its share in this thread's buffer (a few percent of
+  // the pairs: the particles are sorted by cell, so a range is a slab of space).
+  const Sums sums = reduce_slices(threads, n, before, [&](int t, std::size_t begin, std::size_t end, Sums& sum) {
+    double& max_ratio = sum.max_ratio;
+    double &bump_power = sum.bump_power, &growth_power = sum.growth_power, &seam_power = sum.seam_power;
+    long &contacts = sum.contacts, &begun = sum.begun;
     Vec3* force = p.force.data();
     Vec3* torque = p.torque.data();
     Vec3* foreign_force = threads > 1 ? thread_force_[t].data() : force;
@@ -471,7 +477,7 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
           seam_power += total.x * s_.box.image_velocity(code).x;
       }
     }
-  }
+  });
   if (threads > 1) {  // the buffers' shares, each entry cleared after use (listed once per pair)
     for (int t = 0; t < threads; ++t) {
       for (const std::uint32_t j : thread_touched_[t]) {
@@ -483,34 +489,45 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
       thread_touched_[t].clear();
     }
   }
-  stats_.max_overlap_ratio = max_ratio;
-  stats_.contacts = contacts;
-  stats_.collisions += begun;
-  energy_.wall_power += bump_power;
-  energy_.growth_power += growth_power;
-  energy_.seam_power += seam_power;
+  stats_.max_overlap_ratio = sums.max_ratio;
+  stats_.contacts = sums.contacts;
+  stats_.collisions += sums.begun;
+  energy_.wall_power += sums.bump_power;
+  energy_.growth_power += sums.growth_power;
+  energy_.seam_power += sums.seam_power;
 }
 
 template <class Law, bool Rolling>
 void DemEngine<Law, Rolling>::wall_forces(double dt) {
   ParticleStore& p = s_.particles;
   const std::size_t n = p.size();
-  long wall_contacts = 0, begun = 0;
-  double max_ratio = stats_.max_overlap_ratio;
-  double wall_power = 0.0, growth_power = 0.0;
+  struct Sums {  // one thread's share of a wall's counts, powers and force
+    double max_ratio = 0.0, wall_power = 0.0, growth_power = 0.0;
+    Vec3 force{};
+    long wall_contacts = 0, begun = 0;
+    Sums& operator+=(const Sums& o) {
+      max_ratio = std::max(max_ratio, o.max_ratio);
+      wall_power += o.wall_power;
+      growth_power += o.growth_power;
+      force += o.force;
+      wall_contacts += o.wall_contacts;
+      begun += o.begun;
+      return *this;
+    }
+  };
+  Sums all;
+  all.max_ratio = stats_.max_overlap_ratio;
   const double growth_rate = s_.expansion_rate;
   wall_force_.resize(s_.walls.size());
   for (std::size_t w = 0; w < s_.walls.size(); ++w) {
-    double fx = 0.0, fy = 0.0, fz = 0.0;
     const FlatWall& wall = s_.walls[w];
     const Params& params = wall_params_[w];
     auto& states = contacts_.wall_state[w];
     auto& touching = contacts_.wall_touching[w];
     Vec3 normal;
     normal[wall.axis] = wall.inward;
-#pragma omp parallel for num_threads(threads_) schedule(static) \
-  reduction(+ : wall_contacts, begun, wall_power, growth_power, fx, fy, fz) reduction(max : max_ratio)
-    for (std::size_t i = 0; i < n; ++i) {
+    const Sums sums = reduce_slices(threads_, n, Sums{}, [&](int, std::size_t begin, std::size_t end, Sums& sum) {
+    for (std::size_t i = begin; i < end; ++i) {
       if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
       const double ri = p.radius[i];
       const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
@@ -521,7 +538,7 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
       if (!touching[i]) {
         touching[i] = 1;
         states[i] = State{};
-        ++begun;
+        ++sum.begun;
       }
       const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
       const ContactForce f = Law::force(params, law_state(states[i]), c, dt);
@@ -531,21 +548,21 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
       if constexpr (Rolling)
         p.torque[i] += RollingResistance::torque(rolling_.walls[w], states[i].rolling,
                                                  rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal), dt);
-      wall_power += dot(total, wall.velocity);
-      fx += total.x;
-      fy += total.y;
-      fz += total.z;
-      if (growth_rate > 0.0 && ri < p.target_radius[i]) growth_power += f.normal * growth_rate;
-      max_ratio = std::max(max_ratio, c.overlap / (2.0 * ri));
-      ++wall_contacts;
+      sum.wall_power += dot(total, wall.velocity);
+      sum.force += total;
+      if (growth_rate > 0.0 && ri < p.target_radius[i]) sum.growth_power += f.normal * growth_rate;
+      sum.max_ratio = std::max(sum.max_ratio, c.overlap / (2.0 * ri));
+      ++sum.wall_contacts;
     }
-    wall_force_[w] = {fx, fy, fz};
+    });
+    wall_force_[w] = sums.force;
+    all += sums;
   }
-  stats_.wall_contacts = wall_contacts;
-  stats_.wall_collisions += begun;
-  stats_.max_overlap_ratio = max_ratio;
-  energy_.wall_power += wall_power;
-  energy_.growth_power += growth_power;
+  stats_.wall_contacts = all.wall_contacts;
+  stats_.wall_collisions += all.begun;
+  stats_.max_overlap_ratio = all.max_ratio;
+  energy_.wall_power += all.wall_power;
+  energy_.growth_power += all.growth_power;
 }
 
 }  // namespace grainflow::dem

@@ -5,10 +5,7 @@
 #include <stdexcept>
 
 #include "grainflow/core/cell_counts.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "grainflow/dem/thread_slices.hpp"
 
 namespace grainflow::dem {
 
@@ -160,14 +157,7 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
   std::vector<std::vector<std::uint32_t>> partners(threads), counts(threads);
   std::vector<std::vector<std::uint8_t>> codes(threads);
 
-#pragma omp parallel num_threads(threads)
-  {
-#ifdef _OPENMP
-    const int t = omp_get_thread_num();
-#else
-    const int t = 0;
-#endif
-    const std::size_t begin = n * t / threads, end = n * (t + 1) / threads;
+  for_each_slice(threads, n, [&](int t, std::size_t begin, std::size_t end) {
     auto& my_partners = partners[t];
     auto& my_codes = codes[t];
     auto& my_counts = counts[t];
@@ -176,7 +166,7 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
     my_codes.reserve(my_partners.capacity());
     if (frame_.empty()) search<false>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
     else search<true>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
-  }
+  });
 
   out.offsets.assign(n + 1, 0);
   std::size_t total = 0;
