@@ -270,8 +270,11 @@ void write_samplers(Out& o, const CaseConfig& c) {
     o.text_key("kernel", g.kernel);
     if (g.kernel == "lucy") o.key("cutoff", g.cutoff);
     else o.key("width", g.width);
-    if (g.cells[0] > 0) o.key("cells", "[" + std::to_string(g.cells[0]) + ", " + std::to_string(g.cells[1]) + ", " +
-                                           std::to_string(g.cells[2]) + "]");
+    if (g.cells[0] > 0) {
+      std::string cells("[");  // appended piece by piece: g++ 12 warns (-Wrestrict) on "[" + string&&
+      for (std::size_t k = 0; k < 3; ++k) cells.append(k ? ", " : "").append(std::to_string(g.cells[k]));
+      o.key("cells", cells.append("]"));
+    }
     if (g.start >= 0.0) o.key("start", g.start);
     o.key("interval", g.interval);
   }

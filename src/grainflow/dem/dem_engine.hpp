@@ -96,6 +96,11 @@ class DemEngine {
   ContactStatistics& statistics() { return stats_; }
   // The MPI side of the engine, or null on one rank.
   const DomainExchange<State>* domain() const { return domain_.get(); }
+  // MPI: the ghosts take their owners' state at the step's end (the step refreshes them after the
+  // drift, before the second half kick), for observers that evaluate contact forces. Collective.
+  void refresh_ghosts() {
+    if (domain_) domain_->refresh(s_.particles);
+  }
 
   // Everything that changes as the run goes (checkpoints): the rest follows from the case, so a
   // restart builds the engine from its case first and then reads this over it.

@@ -18,6 +18,7 @@ class CoarseGrainObserver final : public Observer {
 
   std::string name() const override { return "coarse_grain"; }
   void sample(const Frame& now) override;
+  bool reads_contact_forces_at(long step) const override { return schedule_.due_at(step); }
   void serialize(io::StateArchive& ar) override { ar(field_, schedule_, first_, last_); }
   void save_portable(io::StateArchive& ar) override {
     CoarseGrainField whole = field_;

@@ -69,13 +69,16 @@ int StressProfile::strip_of(const StripGrid& grid, double y) const {
   return grid.strip_of(y);
 }
 
-void StressProfile::begin(const StripGrid& grid, const ParticleStore& p, double time) {
+void StressProfile::begin(const StripGrid& grid, const ParticleStore& p, double time, const RankReduce& ranks) {
   started_ = true;
   start_time_ = last_time_ = time;
   interval_.assign(strips_, Sums{});
   std::fill(momentum_start_.begin(), momentum_start_.end(), Vec3{});
-  for (std::size_t i = 0; i < p.size(); ++i)
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (!p.ghost.empty() && p.ghost[i]) continue;
     if (const int k = strip_of(grid, p.position[i][grid.axis()]); k >= 0) momentum_start_[k] += p.mass[i] * p.velocity[i];
+  }
+  ranks.sum_records(momentum_start_);
   momentum_end_ = momentum_start_;
 }
 
@@ -108,12 +111,12 @@ void StressProfile::add_contact_force(const StripGrid& grid, const Vec3& centre,
   add_segment(grid, contact, centre, force * duration);
 }
 
-void StressProfile::sample(const StripGrid& grid, const ParticleStore& p, double time) {
+void StressProfile::sample(const StripGrid& grid, const ParticleStore& p, double time, const RankReduce& ranks) {
   if (!started_) return;
   const double per_measure = 1.0 / grid.measure();
   std::fill(momentum_end_.begin(), momentum_end_.end(), Vec3{});
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.motion[i] != Motion::free) continue;
+    if (!p.counted(i)) continue;  // fixed particles carry no kinetic stress; a ghost is its owner's
     const int k = strip_of(grid, p.position[i][grid.axis()]);
     if (k < 0) continue;
     const double m = p.mass[i];
@@ -125,6 +128,8 @@ void StressProfile::sample(const StripGrid& grid, const ParticleStore& p, double
     s.number += 1.0;
     momentum_end_[k] += m * v;
   }
+  ranks.sum_records(interval_);
+  ranks.sum_records(momentum_end_);
   for (int k = 0; k < strips_; ++k) total_[k] += interval_[k];
   blocks_.add(interval_, time - last_time_);
   interval_.assign(strips_, Sums{});

@@ -26,6 +26,7 @@
 
 #include "grainflow/core/vec3.hpp"
 #include "grainflow/observe/collision_observer.hpp"
+#include "grainflow/observe/rank_reduce.hpp"
 #include "grainflow/observe/block_sums.hpp"
 #include "grainflow/analysis/strip_grid.hpp"
 #include "grainflow/particles/particle_store.hpp"
@@ -55,7 +56,9 @@ class StressProfile {
   explicit StressProfile(int strips, double period = 0.0);
 
   // Starts averaging at `time`: momentum per strip now (for Campbell's rho u_t correction).
-  void begin(const StripGrid& grid, const ParticleStore& p, double time);
+  // `ranks`: on several MPI ranks each adds its own particles (not ghosts) and contacts, and the
+  // strips' sums are added over the ranks at each sample, so that every rank holds the whole.
+  void begin(const StripGrid& grid, const ParticleStore& p, double time, const RankReduce& ranks = {});
   // A particle pair collision; `grid` as it is at the collision's time.
   void add(const StripGrid& grid, const observe::PairCollision& c);
   // A wall collision: the impulse runs from the contact point to the centre.
@@ -65,7 +68,7 @@ class StressProfile {
                          double duration);
   // Closes the interval since the previous sample (or begin) at `time`: the kinetic sample, with
   // every particle current.
-  void sample(const StripGrid& grid, const ParticleStore& p, double time);
+  void sample(const StripGrid& grid, const ParticleStore& p, double time, const RankReduce& ranks = {});
 
   bool started() const { return started_; }
   long samples() const { return samples_; }

@@ -6,6 +6,7 @@ namespace grainflow::observe {
 
 ContactStressObserver::ContactStressObserver(const RunContext& run, const Frame& start)
     : c_(*run.c),
+      ranks_(run.ranks),
       frame_(&start),
       strips_(*run.c, start),
       stress_(strips_.count(), start.box->periodic[StripLayout::kAxis] ? start.box->length(StripLayout::kAxis) : 0.0),
@@ -21,7 +22,7 @@ void ContactStressObserver::sample(const Frame& now) {
   const ParticleStore& p = *now.particles;
   if (!started_) {
     if (!(t >= c_.output.average_start)) return;
-    stress_.begin(grid, p, t);
+    stress_.begin(grid, p, t, ranks_);
     started_ = true;
     last_ = t;
     return;
@@ -36,8 +37,8 @@ void ContactStressObserver::sample(const Frame& now) {
       walls_.add_rolling(wall, force, duration, wall_area(*now.box, axis, now.dimension));
     }
   });
-  stress_.sample(grid, p, t);
-  walls_.close_interval(duration);
+  stress_.sample(grid, p, t, ranks_);
+  walls_.close_interval(duration, ranks_);
   last_ = t;
 }
 

@@ -27,6 +27,7 @@ class ContactStressObserver final : public Observer {
 
   std::string name() const override { return "stresses"; }
   void sample(const Frame& now) override;
+  bool reads_contact_forces_at(long step) const override { return schedule_.due_at(step); }
   void serialize(io::StateArchive& ar) override { ar(stress_, walls_, schedule_, started_, last_); }
   void write(const Frame& last, OutputSink& out) override;
 
@@ -37,6 +38,7 @@ class ContactStressObserver final : public Observer {
 
  private:
   const CaseConfig& c_;
+  RankReduce ranks_;  // each rank adds its own particles and contacts; sums over ranks at each sample
   const Frame* frame_ = nullptr;  // the run's frame (its box and walls), seen at the last sample
   StripLayout strips_;
   StressProfile stress_;

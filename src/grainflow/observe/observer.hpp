@@ -76,6 +76,13 @@ class Observer {
   // The next time it wants a frame (an event-driven run advances there); kNoSampleTime: none.
   virtual double next_time() const { return kNoSampleTime; }
   virtual void sample(const Frame& now) = 0;
+  // Soft spheres on several MPI ranks: true when the sample at `step` reads contact forces, whose
+  // damping needs the ghosts' velocities at the step's end (the run refreshes them first; they
+  // are half a step old otherwise).
+  virtual bool reads_contact_forces_at(long step) const {
+    (void)step;
+    return false;
+  }
   // Non-null while it wants every collision reported (the event-driven engine calls it).
   virtual CollisionObserver* collision_observer() { return nullptr; }
 

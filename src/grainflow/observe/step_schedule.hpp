@@ -18,6 +18,8 @@ class Schedule {
   void serialize(Archive& ar) {
     ar(k_, next_);
   }
+  // Whether due(step) would be true, without advancing.
+  bool due_at(long step) const { return interval_ > 0.0 && step >= next_; }
   bool due(long step) {
     if (interval_ <= 0.0 || step < next_) return false;
     advance();

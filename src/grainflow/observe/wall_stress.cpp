@@ -26,7 +26,8 @@ void WallLoads::add_rolling(int wall, const Vec3& force, double duration, double
   interval_[wall].rolling += force * (duration / area);
 }
 
-void WallLoads::close_interval(double duration) {
+void WallLoads::close_interval(double duration, const RankReduce& ranks) {
+  ranks.sum_records(interval_);
   for (std::size_t w = 0; w < total_.size(); ++w) total_[w] += interval_[w];
   blocks_.add(interval_, duration);
   interval_.assign(total_.size(), Sums{});

@@ -15,6 +15,7 @@
 #include "grainflow/core/vec3.hpp"
 #include "grainflow/observe/collision_observer.hpp"
 #include "grainflow/observe/block_sums.hpp"
+#include "grainflow/observe/rank_reduce.hpp"
 
 namespace grainflow::observe {
 
@@ -47,7 +48,8 @@ class WallLoads {
   void add(const observe::WallCollision& c, double area);
   // A rolling particle's push, `force` on the particle, through `duration`.
   void add_rolling(int wall, const Vec3& force, double duration, double area);
-  void close_interval(double duration);
+  // Ends a sample interval; on several MPI ranks (`ranks`) its sums are first added over them.
+  void close_interval(double duration, const RankReduce& ranks = {});
 
   double elapsed() const { return elapsed_; }
 

@@ -212,10 +212,7 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
     read_portable_particles(*portable_restart, portable_particles, initial);
   }
 
-  // Refused before anything is written: the stress sums are not yet reduced over ranks.
-  if (ranks && c.output.stresses)
-    throw InputError(c.path, "output.stresses", "is measured on one MPI rank for now (threads are fine): run it "
-                                                "without mpirun, or set output.stresses = false");
+  // Refused before anything is written.
   if (ranks && c.lees_edwards_rate != 0.0)
     throw InputError(c.path, "lees_edwards", "runs on one MPI rank for now (threads are fine): run it without mpirun");
   if (ranks && c.servo.enabled)  // the walls' loads would have to be summed over the ranks at every step
@@ -416,6 +413,9 @@ void DemRun::step_loop(E& e) {
     else if (step % 100 == 0) interrupted = static_cast<int>(comm.max(pending_interrupt()));
     if (interrupted != 0) break;
     e.step();
+    // The schedules are the same on every rank, so all refresh together.
+    if (ranks && std::any_of(observers.begin(), observers.end(), [&](const auto& o) { return o->reads_contact_forces_at(step); }))
+      e.refresh_ghosts();
     const observe::Frame& now = frame_now(e);
     for (auto& o : observers) o->sample(now);
     if (output_schedule.due(step)) {
