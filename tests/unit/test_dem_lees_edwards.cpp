@@ -154,7 +154,9 @@ TEST(DemLeesEdwards, ACrossingParticleEntersTheSlidingRow) {
       for (int sy = -1; sy <= 1; ++sy)
         for (int sx = -2; sx <= 2; ++sx) nearest = std::min(nearest, norm(a - image_of(box, b, sx, sy, sz)));
     // The convention holds within half the narrowest width (as without shear).
-    if (nearest < 2.9) EXPECT_NEAR(norm(box.minimum_image(a, b)), nearest, 1e-12);
+    if (nearest < 2.9) {
+      EXPECT_NEAR(norm(box.minimum_image(a, b)), nearest, 1e-12);
+    }
   }
 }
 

@@ -78,7 +78,9 @@ TEST(InitialFlow, CampbellsChuteFitRunsFromTheSlipToTheTopSpeed) {
   double top = 0.0;
   for (std::size_t i = 0; i < s.particles.size(); ++i) top = std::max(top, s.particles.position[i].y);
   for (std::size_t i = 0; i < s.particles.size(); ++i)
-    if (s.particles.position[i].y == top) EXPECT_NEAR(s.particles.velocity[i].x, 0.5, 0.5 * 2e-4);
+    if (s.particles.position[i].y == top) {
+      EXPECT_NEAR(s.particles.velocity[i].x, 0.5, 0.5 * 2e-4);
+    }
 }
 
 // Lees-Edwards: the homogeneous shear u_x = rate (y - y_mid) on top of initial_velocity.

@@ -215,7 +215,9 @@ TEST(Jkr, BondedPairOscillatesAtTheCurvesSlopeAndBoundsTheTimeStep) {
     if (previous_v * v < 0.0) {
       ++crossings;
       if (crossings == 1) crossing = t;
-      if (crossings == 3) EXPECT_NEAR(t - crossing, period, 1e-4 * period);
+      if (crossings == 3) {
+        EXPECT_NEAR(t - crossing, period, 1e-4 * period);
+      }
     }
     previous_v = v;
   }
