@@ -1,5 +1,7 @@
 // Micro benchmarks of the DEM hot kernels: one contact-law evaluation (Walton–Braun with friction
-// vs the linear spring–dashpot), a cell-grid neighbor build, and one full engine step.
+// vs the linear spring–dashpot), a cell-grid neighbor build, and one full engine step; and the
+// machine's two roofline ceilings as this compiler reaches them: a register-resident fused
+// multiply-add loop (flops) and a STREAM triad over arrays far larger than the caches (bytes).
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -82,5 +84,42 @@ void BM_EngineStep(benchmark::State& bench) {
   bench.SetItemsProcessed(bench.iterations() * bench.range(0));
 }
 BENCHMARK(BM_EngineStep)->Arg(4000)->Arg(32000);
+
+// Peak arithmetic: 64 independent multiply-add chains (eight 512-bit registers' worth, enough to
+// cover the FMA latency on two pipes) that stay in registers; 2 flops each.
+void BM_PeakMultiplyAdd(benchmark::State& bench) {
+  constexpr int kChains = 64;
+  alignas(64) double acc[kChains];
+  for (int k = 0; k < kChains; ++k) acc[k] = 1.0 + 1e-3 * k;
+  const double a = 0.999999, b = 1e-7;
+  constexpr long kRounds = 4096;
+  for (auto _ : bench) {
+    for (long r = 0; r < kRounds; ++r)
+#pragma omp simd
+      for (int k = 0; k < kChains; ++k) acc[k] = acc[k] * a + b;
+    benchmark::DoNotOptimize(acc);
+  }
+  bench.counters["flops"] = benchmark::Counter(static_cast<double>(bench.iterations()) * kRounds * kChains * 2.0,
+                                               benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_PeakMultiplyAdd);
+
+// Memory bandwidth: a[i] = b[i] + s c[i] over three arrays of 2^23 doubles (64 MiB each); 24 bytes
+// moved per element as STREAM counts them (the write's cache-line fill is not counted).
+void BM_StreamTriad(benchmark::State& bench) {
+  const std::size_t n = std::size_t{1} << 23;
+  std::vector<double> a(n, 0.0), b(n, 1.0), c(n, 2.0);
+  const double s = 3.0;
+  for (auto _ : bench) {
+    double* __restrict pa = a.data();
+    const double* __restrict pb = b.data();
+    const double* __restrict pc = c.data();
+    for (std::size_t i = 0; i < n; ++i) pa[i] = pb[i] + s * pc[i];
+    benchmark::DoNotOptimize(a.data());
+    benchmark::ClobberMemory();
+  }
+  bench.SetBytesProcessed(static_cast<long long>(bench.iterations()) * static_cast<long long>(n) * 24);
+}
+BENCHMARK(BM_StreamTriad)->Unit(benchmark::kMillisecond);
 
 }  // namespace
