@@ -3,10 +3,11 @@
 discs, e_w = 0.8 at the rough floor, the 10 x 4 block of cases/campbell1982/chute_30deg.toml started
 at u = 3) run by the event-driven engine with Campbell's own collision rule (after each collision the
 pair is put 2.00001 R apart and every collision is inelastic and rough) and with the TC model (a
-collision within 1e-4 of a previous one is elastic and smooth), and by the DEM engine as soft discs:
-linear springs kn = 1e3 and 1e5, gamma_n giving e_p and e_w exactly, no sliding (friction 1000) and
-kt = (kn / 12) (omega_d / omega_0)^2, which ends the tangential spring's quarter period with the
-contact: tangential restitution 0, Campbell's fully rough collisions.
+collision within 1e-4 of a previous one is elastic and smooth), and by the DEM engine as soft discs
+made by tools/campbell_soft_discs.py: linear springs kn = 1e3 and 1e5, gamma_n giving e_p and e_w
+exactly, no sliding (friction 1000) and kt = (kn / 12) (omega_d / omega_0)^2, which ends the
+tangential spring's quarter period with the contact: tangential restitution 0, Campbell's fully
+rough collisions.
 
 The flow is a transient (the dense block accelerates down the chute), so the comparison is of the
 ensemble mean over 32 seeds of the kinetic energy over t = 25-50 sqrt(R/g). Measured (32 seeds):
@@ -35,12 +36,15 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gftest import check, executable_from_argv, finish, read_csv, run_case_text  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from campbell_soft_discs import soft_disc_case  # noqa: E402
+
 SEEDS = range(1, 33)
 WINDOW = (25.0, 50.0)
 RESTITUTION_PAIRS, RESTITUTION_WALL = 0.6, 0.8
 
 CHUTE = """[engine]
-kind = "{engine}"
+kind = "edmd"
 dimension = 2
 [domain]
 lo = [0.0, 0.0, 0.0]
@@ -81,38 +85,27 @@ condition = "rough"
 """
 
 
-def dashpot_damping(restitution, effective_mass, kn):
-    """gamma_n of F = -kn x - m_eff gamma_n v that gives `restitution`: e = exp(-gamma pi / (2 omega_d))."""
-    log_e = math.log(restitution)
-    return 2.0 * math.sqrt(kn / effective_mass) * (-log_e) / math.sqrt(math.pi**2 + log_e**2)
-
-
-def soft_law(kn):
-    pairs = dashpot_damping(RESTITUTION_PAIRS, 0.5, kn)
-    wall = dashpot_damping(RESTITUTION_WALL, 1.0, kn)
-    omega0_squared = kn / 0.5
-    kt = kn / 12.0 * (omega0_squared - pairs**2 / 4.0) / omega0_squared
-    return (f'[contact]\nmodel = "linear_dashpot"\nkn = {kn!r}\nkt = {kt!r}\ngamma_n = {pairs!r}\ngamma_t = 0.0\n'
-            f'friction = 1000.0\n[walls.ylo]\ngamma_n = {wall!r}\nfriction = 1000.0\n')
-
-
-VARIANTS = {
-    "campbell": ("edmd", CAMPBELL.format(rule="contact_duration = 0.0\nseparation_gap = 1.0e-5")),
-    "tc": ("edmd", CAMPBELL.format(rule="contact_duration = 1.0e-4")),
-    "kn_1e3": ("dem", soft_law(1.0e3)),
-    "kn_1e5": ("dem", soft_law(1.0e5)),
+CAMPBELL_SCHEME = CAMPBELL.format(rule="contact_duration = 0.0\nseparation_gap = 1.0e-5")
+VARIANTS = {  # name: (law, stiffness of the soft twin or None)
+    "campbell": (CAMPBELL_SCHEME, None),
+    "tc": (CAMPBELL.format(rule="contact_duration = 1.0e-4"), None),
+    "kn_1e3": (CAMPBELL_SCHEME, 1.0e3),
+    "kn_1e5": (CAMPBELL_SCHEME, 1.0e5),
 }
 
 
-def window_energy(exe, tmp, name, engine, law, seed):
-    """The run's mean kinetic energy over WINDOW, or None after a failed check."""
-    text = CHUTE.format(engine=engine, seed=seed, law=law, duration=WINDOW[1], start=WINDOW[0])
+def window_energy(exe, tmp, name, law, kn, seed):
+    """The run's mean kinetic energy over WINDOW (the soft twin's when `kn` is given), or None after a
+    failed check."""
+    text = CHUTE.format(seed=seed, law=law, duration=WINDOW[1], start=WINDOW[0])
+    if kn is not None:
+        text = soft_disc_case(text, kn)
     out = run_case_text(exe, tmp, f"{name}_{seed}", text)
     if out is None:
         return None
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
-    bound = 1e-10 if engine == "edmd" else 1e-4
+    bound = 1e-10 if kn is None else 1e-4
     check(abs(summary["energy_budget_residual"]) < bound,
           f"{name} seed {seed}: energy budget residual {summary['energy_budget_residual']:.3g} (bound {bound:g})")
     rows = read_csv(os.path.join(out, "timeseries.csv"))
@@ -126,8 +119,8 @@ def main():
         return 2
     means = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for name, (engine, law) in VARIANTS.items():
-            values = [window_energy(exe, tmp, name, engine, law, seed) for seed in SEEDS]
+        for name, (law, kn) in VARIANTS.items():
+            values = [window_energy(exe, tmp, name, law, kn, seed) for seed in SEEDS]
             if None in values:
                 return finish("test_chute_soft_hard")
             means[name] = (statistics.fmean(values), statistics.stdev(values) / math.sqrt(len(values)))
