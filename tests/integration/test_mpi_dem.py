@@ -16,6 +16,13 @@ case files and outputs of a serial run.
   walls on all four sides on 4 ranks (a 2 x 2 grid of columns: particles cross the sub-domains'
   edges and corners, and ghosts go to diagonal neighbours), and with two OpenMP threads inside each
   of two ranks.
+- Campbell's pressure-controlled Couette cell with soft discs (tools/campbell_soft_discs.py on
+  cases/campbell1982/couette_rough.toml, kn = 1e3; 40 discs, the cell cut across its gap, so that
+  discs cross between the ranks while the servo moves both walls) on 2 ranks steers the walls as on
+  one: the walls' loads and the contacts begun are summed over the ranks before each servo step,
+  so the gap, the walls' speed and the kinetic energy of every row over 300 R/U_T (300 servo
+  updates) are one rank's to 1e-9 (measured: identical); without the sum each rank would steer by
+  its own share of the load.
 - A fault all ranks see at an output time stops them together, with the outputs written.
 - The sampled outputs, snapshots and checkpoints on several ranks: test_mpi_outputs.py.
 
@@ -30,6 +37,9 @@ import os
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tools"))
+from campbell_soft_discs import soft_disc_case  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from gftest import check, executable_from_argv, finish, mpi_environment, mpirun_found, read_csv  # noqa: E402
@@ -56,6 +66,32 @@ def states(path):
 
 def largest_difference(a, b, keys):
     return max(math.dist([float(a[i][k]) for k in keys], [float(b[i][k]) for k in keys]) for i in a)
+
+
+def servo_cell(exe, tmp):
+    """The soft-disc servo Couette cell on 1 and 2 ranks: the same rows."""
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+    with open(os.path.join(root, "cases", "campbell1982", "couette_rough.toml")) as f:
+        case = os.path.join(tmp, "servo_cell.toml")
+        with open(case, "w") as out:
+            out.write(soft_disc_case(f.read(), 1.0e3))
+    args = ["--set", "run.duration=300", "--set", "output.average_start=100", "--set", "output.interval=10"]
+    rows, summaries = {}, {}
+    for ranks in (1, 2):
+        out = os.path.join(tmp, f"servo_{ranks}")
+        status, err = run_ranks(exe, ranks, out, args, case=case)
+        if not check(status == 0, f"servo cell, {ranks} ranks: exit {status}: {err[-2000:]}"):
+            return
+        rows[ranks] = read_csv(os.path.join(out, "timeseries.csv"))
+        summaries[ranks] = json.load(open(os.path.join(out, "summary.json")))
+    check(summaries[2].get("mpi_migrations", 0) > 0, f"servo cell: no disc crossed between the ranks ({summaries[2].get('mpi_grid')})")
+    check(summaries[1]["servo_updates"] == summaries[2]["servo_updates"] and summaries[1]["servo_updates"] > 100,
+          f"servo updates {summaries[1]['servo_updates']} on one rank, {summaries[2]['servo_updates']} on two")
+    check(len(rows[1]) == len(rows[2]), f"servo cell: {len(rows[1])} and {len(rows[2])} rows")
+    for a, b in zip(rows[1], rows[2]):
+        for key in ("gap", "wall_speed", "kinetic_energy"):
+            check(abs(float(a[key]) - float(b[key])) <= 1e-9 * max(1.0, abs(float(a[key]))),
+                  f"servo cell, t = {a['time']}: {key} {b[key]} on 2 ranks, {a[key]} on one")
 
 
 def main():
@@ -114,6 +150,8 @@ def main():
             if check(sorted(a) == sorted(b), f"{label}: other particles than one rank's"):
                 dx = largest_difference(a, b, ("x", "y", "z"))
                 check(dx <= 1e-9 * DIAMETER, f"{label}: positions differ by {dx / DIAMETER:.3g} d from one rank's")
+
+        servo_cell(exe, tmp)
 
         # Long run: statistically identical profiles on 1 and 2 ranks.
         profiles = {}

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -307,6 +308,14 @@ class DemEngine {
   void servo_step(double dt);
   // The normal force the particles exert on wall w at the last force evaluation (N; N/m for discs).
   double wall_load(int w) const { return dot(wall_force_[w], s_.walls[w].normal()); }
+  // The servo's inputs, over every MPI rank: the bottom and top walls' loads and the contacts
+  // begun between particles (one sum; the ranks then steer the walls alike).
+  std::array<double, 3> servo_inputs() const {
+    std::array<double, 3> v{wall_load(servo_.bottom_wall()), wall_load(servo_.top_wall()),
+                            static_cast<double>(stats_.collisions)};
+    if (domain_) domain_->sum_in_place(v.data(), v.size());
+    return v;
+  }
 
   DemState s_;
   Params pair_params_;

@@ -48,7 +48,10 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
   // The initial evaluation must not advance contact histories (no time has passed): dt = 0.
   compute_forces(0.0);
   servo_ = DemCouetteServo(s_);
-  if (servo_.enabled()) servo_.start_loads(wall_load(servo_.bottom_wall()), wall_load(servo_.top_wall()));
+  if (servo_.enabled()) {
+    const auto inputs = servo_inputs();
+    servo_.start_loads(inputs[0], inputs[1]);
+  }
   energy_.contact_power = contact_power();
   energy_.start_elastic = elastic_energy();
   energy_.start_energy = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) + energy_.start_elastic;
@@ -156,13 +159,15 @@ void DemEngine<Law, Rolling>::step() {
 
 template <class Law, bool Rolling>
 void DemEngine<Law, Rolling>::servo_step(double dt) {
-  servo_.add_loads(dt, wall_load(servo_.bottom_wall()), wall_load(servo_.top_wall()));
-  if (!servo_.due(s_, stats_.collisions)) {
+  const auto inputs = servo_inputs();
+  servo_.add_loads(dt, inputs[0], inputs[1]);
+  const auto collisions = static_cast<long long>(inputs[2]);
+  if (!servo_.due(s_, collisions)) {
     servo_.observe(s_);
     return;
   }
   const Vec3 bottom = s_.walls[servo_.bottom_wall()].velocity, top = s_.walls[servo_.top_wall()].velocity;
-  servo_.update(s_, stats_.collisions);
+  servo_.update(s_, collisions);
   // The walls move at their new speeds from now: the next step's work starts from this power.
   energy_.wall_power += dot(wall_force_[servo_.bottom_wall()], s_.walls[servo_.bottom_wall()].velocity - bottom) +
                         dot(wall_force_[servo_.top_wall()], s_.walls[servo_.top_wall()].velocity - top);

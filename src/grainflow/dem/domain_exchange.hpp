@@ -66,6 +66,7 @@ class DomainExchange {
     return n;
   }
   bool any(bool local) const { return comm_.any(local); }
+  void sum_in_place(double* values, std::size_t count) const { comm_.sum_in_place(values, count); }
 
   template <class Archive>  // checkpoints: this rank's cuts, counters and ghost bookkeeping
   void serialize(Archive& ar) {

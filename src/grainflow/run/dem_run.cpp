@@ -215,8 +215,6 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   // Refused before anything is written.
   if (ranks && c.lees_edwards_rate != 0.0)
     throw InputError(c.path, "lees_edwards", "runs on one MPI rank for now (threads are fine): run it without mpirun");
-  if (ranks && c.servo.enabled)  // the walls' loads would have to be summed over the ranks at every step
-    throw InputError(c.path, "servo", "runs on one MPI rank for now (threads are fine): run it without mpirun");
   fs::create_directories(options.output_directory);
   dir = options.output_directory;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
