@@ -206,6 +206,9 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   dem::DemState initial = dem::build_dem_state(c);
   particle_count = static_cast<long long>(initial.particles.size());
   if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count, comm);
+  if (restart && restart->portable && c.servo.enabled)  // the portable state has no walls' servo state
+    throw InputError(c.path, "servo", "a run with pressure-controlled walls restarts on as many MPI ranks as wrote " +
+                                          options.restart + " (" + std::to_string(restart->header.ranks) + ")");
   if (restart && restart->portable) {
     portable_restart.emplace(io::StateArchive::for_reading(restart->state, options.restart));
     portable_restart->tag("portable dem run with observers");
