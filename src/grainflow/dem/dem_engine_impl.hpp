@@ -15,6 +15,25 @@
 
 namespace grainflow::dem {
 
+// One thread's share of a force loop's (pairs' or a wall's) counts, powers and force.
+struct ForceLoopSums {
+  double max_ratio = 0.0;       // the largest overlap over the smaller diameter
+  double boundary_power = 0.0;  // W: on a moving wall, or on free partners by wall bumps
+  double growth_power = 0.0, seam_power = 0.0;
+  Vec3 force{};                 // N: on the particles (a wall's load)
+  long contacts = 0, begun = 0;
+  ForceLoopSums& operator+=(const ForceLoopSums& o) {
+    max_ratio = std::max(max_ratio, o.max_ratio);
+    boundary_power += o.boundary_power;
+    growth_power += o.growth_power;
+    seam_power += o.seam_power;
+    force += o.force;
+    contacts += o.contacts;
+    begun += o.begun;
+    return *this;
+  }
+};
+
 template <class Law, bool Rolling>
 DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vector<Params> wall_params, int threads, int sort_every,
           const EngineDomain* domain, RollingSetup rolling)
@@ -400,29 +419,16 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
     thread_torque_.assign(threads, std::vector<Vec3>(n));
     thread_touched_.assign(threads, {});
   }
-  struct Sums {  // one thread's share of the loop's counts and powers
-    double max_ratio = 0.0, bump_power = 0.0, growth_power = 0.0, seam_power = 0.0;
-    long contacts = 0, begun = 0;
-    Sums& operator+=(const Sums& o) {
-      max_ratio = std::max(max_ratio, o.max_ratio);
-      bump_power += o.bump_power;
-      growth_power += o.growth_power;
-      seam_power += o.seam_power;
-      contacts += o.contacts;
-      begun += o.begun;
-      return *this;
-    }
-  };
-  Sums before;
+  ForceLoopSums before;
   before.max_ratio = stats_.max_overlap_ratio;
   const double growth_rate = s_.expansion_rate;
   const double seam_velocity = s_.box.shear_velocity;
   // Each thread owns a contiguous range of particles and adds to their forces directly; a
   // partner owned by another thread gets its share in this thread's buffer (a few percent of
   // the pairs: the particles are sorted by cell, so a range is a slab of space).
-  const Sums sums = reduce_slices(threads, n, before, [&](int t, std::size_t begin, std::size_t end, Sums& sum) {
+  const ForceLoopSums sums = reduce_slices(threads, n, before, [&](int t, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
     double& max_ratio = sum.max_ratio;
-    double &bump_power = sum.bump_power, &growth_power = sum.growth_power, &seam_power = sum.seam_power;
+    double &bump_power = sum.boundary_power, &growth_power = sum.growth_power, &seam_power = sum.seam_power;
     long &contacts = sum.contacts, &begun = sum.begun;
     Vec3* force = p.force.data();
     Vec3* torque = p.torque.data();
@@ -497,7 +503,7 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
   stats_.max_overlap_ratio = sums.max_ratio;
   stats_.contacts = sums.contacts;
   stats_.collisions += sums.begun;
-  energy_.wall_power += sums.bump_power;
+  energy_.wall_power += sums.boundary_power;
   energy_.growth_power += sums.growth_power;
   energy_.seam_power += sums.seam_power;
 }
@@ -506,21 +512,7 @@ template <class Law, bool Rolling>
 void DemEngine<Law, Rolling>::wall_forces(double dt) {
   ParticleStore& p = s_.particles;
   const std::size_t n = p.size();
-  struct Sums {  // one thread's share of a wall's counts, powers and force
-    double max_ratio = 0.0, wall_power = 0.0, growth_power = 0.0;
-    Vec3 force{};
-    long wall_contacts = 0, begun = 0;
-    Sums& operator+=(const Sums& o) {
-      max_ratio = std::max(max_ratio, o.max_ratio);
-      wall_power += o.wall_power;
-      growth_power += o.growth_power;
-      force += o.force;
-      wall_contacts += o.wall_contacts;
-      begun += o.begun;
-      return *this;
-    }
-  };
-  Sums all;
+  ForceLoopSums all;
   all.max_ratio = stats_.max_overlap_ratio;
   const double growth_rate = s_.expansion_rate;
   wall_force_.resize(s_.walls.size());
@@ -531,42 +523,42 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
     auto& touching = contacts_.wall_touching[w];
     Vec3 normal;
     normal[wall.axis] = wall.inward;
-    const Sums sums = reduce_slices(threads_, n, Sums{}, [&](int, std::size_t begin, std::size_t end, Sums& sum) {
-    for (std::size_t i = begin; i < end; ++i) {
-      if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
-      const double ri = p.radius[i];
-      const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
-      if (!wall_in_contact(gap, ri, touching[i], params)) {
-        touching[i] = 0;
-        continue;
+    const ForceLoopSums sums = reduce_slices(threads_, n, ForceLoopSums{}, [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
+      for (std::size_t i = begin; i < end; ++i) {
+        if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
+        const double ri = p.radius[i];
+        const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
+        if (!wall_in_contact(gap, ri, touching[i], params)) {
+          touching[i] = 0;
+          continue;
+        }
+        if (!touching[i]) {
+          touching[i] = 1;
+          states[i] = State{};
+          ++sum.begun;
+        }
+        const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
+        const ContactForce f = Law::force(params, law_state(states[i]), c, dt);
+        const Vec3 total = f.normal * normal + f.tangential;
+        p.force[i] += total;
+        p.torque[i] -= ri * cross(normal, f.tangential);
+        if constexpr (Rolling)
+          p.torque[i] += RollingResistance::torque(rolling_.walls[w], states[i].rolling,
+                                                   rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal), dt);
+        sum.boundary_power += dot(total, wall.velocity);
+        sum.force += total;
+        if (growth_rate > 0.0 && ri < p.target_radius[i]) sum.growth_power += f.normal * growth_rate;
+        sum.max_ratio = std::max(sum.max_ratio, c.overlap / (2.0 * ri));
+        ++sum.contacts;
       }
-      if (!touching[i]) {
-        touching[i] = 1;
-        states[i] = State{};
-        ++sum.begun;
-      }
-      const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
-      const ContactForce f = Law::force(params, law_state(states[i]), c, dt);
-      const Vec3 total = f.normal * normal + f.tangential;
-      p.force[i] += total;
-      p.torque[i] -= ri * cross(normal, f.tangential);
-      if constexpr (Rolling)
-        p.torque[i] += RollingResistance::torque(rolling_.walls[w], states[i].rolling,
-                                                 rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal), dt);
-      sum.wall_power += dot(total, wall.velocity);
-      sum.force += total;
-      if (growth_rate > 0.0 && ri < p.target_radius[i]) sum.growth_power += f.normal * growth_rate;
-      sum.max_ratio = std::max(sum.max_ratio, c.overlap / (2.0 * ri));
-      ++sum.wall_contacts;
-    }
     });
     wall_force_[w] = sums.force;
     all += sums;
   }
-  stats_.wall_contacts = all.wall_contacts;
+  stats_.wall_contacts = all.contacts;
   stats_.wall_collisions += all.begun;
   stats_.max_overlap_ratio = all.max_ratio;
-  energy_.wall_power += all.wall_power;
+  energy_.wall_power += all.boundary_power;
   energy_.growth_power += all.growth_power;
 }
 

@@ -23,7 +23,7 @@ std::vector<std::size_t> shown_particles(const ParticleStore& p) {
   std::vector<std::size_t> shown;
   shown.reserve(p.size());
   for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.ghost.empty() || !p.ghost[i]) shown.push_back(i);
+    if (p.owned(i)) shown.push_back(i);
   return shown;
 }
 

@@ -75,7 +75,7 @@ void StressProfile::begin(const StripGrid& grid, const ParticleStore& p, double 
   interval_.assign(strips_, Sums{});
   std::fill(momentum_start_.begin(), momentum_start_.end(), Vec3{});
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (!p.ghost.empty() && p.ghost[i]) continue;
+    if (!p.owned(i)) continue;
     if (const int k = strip_of(grid, p.position[i][grid.axis()]); k >= 0) momentum_start_[k] += p.mass[i] * p.velocity[i];
   }
   ranks.sum_records(momentum_start_);

@@ -31,7 +31,7 @@ void TrajectorySampler::observe(const ParticleStore& p, const PeriodicBox& box, 
 void TrajectorySampler::add(const ParticleStore& p, const PeriodicBox& box, double weight) {
   if (weight <= 0.0) return;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (!p.ghost.empty() && p.ghost[i]) continue;  // MPI: its owner counts it
+    if (!p.owned(i)) continue;  // MPI: its owner counts it
     const auto id = p.id[i];
     if (id >= column_of_id_.size()) continue;
     const int k = column_of_id_[id];

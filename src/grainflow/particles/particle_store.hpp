@@ -50,8 +50,10 @@ struct ParticleStore {
   Record record(std::size_t i) const;
   void push_back(const Record& r);
   bool moves(std::size_t i) const { return motion[i] == Motion::free; }
-  // Free and this rank's own (not a copy of another MPI rank's): what the observers count.
-  bool counted(std::size_t i) const { return motion[i] == Motion::free && (ghost.empty() || !ghost[i]); }
+  // This rank's own, not a copy of another MPI rank's.
+  bool owned(std::size_t i) const { return ghost.empty() || !ghost[i]; }
+  // Free and this rank's own: what the observers count.
+  bool counted(std::size_t i) const { return motion[i] == Motion::free && owned(i); }
 
   template <class Archive>  // checkpoints (io/state_archive.hpp)
   void serialize(Archive& ar) {
