@@ -50,8 +50,8 @@ int finish_summary(io::JsonObject& summary, const std::string& dir, const std::v
                    const std::vector<std::string>& warnings, int exit_status, bool echo_errors = true);
 
 // summary.json's energy budget: energy_input (and its parts energy_input_gravity, _walls,
-// _boundaries, _growth), energy_change, energy_dissipated, energy_budget_residual; `fallback_scale` as for
-// EnergyBudget::residual.
+// _boundaries, _growth, _separation), energy_change, energy_dissipated, energy_budget_residual;
+// `fallback_scale` as for EnergyBudget::residual.
 void write_energy_budget(const observe::EnergyBudget& b, double fallback_scale, io::JsonObject& summary);
 
 // final_state.csv: every particle by id, with exact doubles so the state can start another run.
