@@ -150,7 +150,8 @@ TEST(ZoneProfile, MeanVelocityAndBothTemperatures) {
 // A sphere cut by a zone boundary counts in both zones with its volume shares: centred on the
 // boundary, half its mass and momentum in each. Zone 0 also holds a resting sphere, so its mean
 // velocity is the mass-weighted (m v / 2 + m 0) / (3m / 2) = v / 3, and the moving sphere's
-// fluctuation about that mean gives Lan's temperature [m/2 (2v/3)^2 + m (v/3)^2] / (3m/2) = 2 v^2 / 9.
+// fluctuation about that mean gives Lan's zone temperature (eq. 3-1-9, `temperature_lan`)
+// [m/2 (2v/3)^2 + m (v/3)^2] / (3m/2) = 2 v^2 / 9.
 TEST(ZoneProfile, SphereOnAZoneBoundaryIsSharedByVolume) {
   const double r = 0.001, rho = 1000.0, v = 0.6;
   ParticleStore p;
@@ -238,11 +239,13 @@ TEST(ZoneProfile, InstantaneousMeanVelocityIsPartialVolumeWeighted) {
   EXPECT_NEAR(centre[2], 0.010, 1e-15);
 }
 
-// Lan's cell-average temperature at one instant: the mass-weighted mean of the zone temperatures
-// about each zone's own instantaneous mean. Zone 0 holds two equal spheres moving at +-v along x
-// about a common drift (its temperature is v^2 / 3 per degree of freedom), zone 1 a lone sphere
-// (no fluctuation about its own mean), so the cell average is (2m v^2 / 3) / (3m) = 2 v^2 / 9.
-// A drift shared by the zone does not count, unlike the whole-bed temperature of GlobalSample.
+// The bed's zone temperature at one instant (timeseries.csv's `zone_temperature`): the mass-weighted
+// mean over zones of the zone temperatures, each about its zone's own instantaneous mean (eq. 3-1-9);
+// not Lan's cell-average temperature, which is about the whole cell's mean velocity (eq. 3-1-2).
+// Zone 0 holds two equal spheres moving at +-v along x about a common drift (its temperature is
+// v^2 / 3 per degree of freedom), zone 1 a lone sphere (no fluctuation about its own mean), so the
+// mass-weighted mean is (2m v^2 / 3) / (3m) = 2 v^2 / 9. A drift shared by the zone does not count,
+// unlike in the cell-average temperature of GlobalSample, about the whole bed's mean velocity.
 TEST(ZoneProfile, InstantaneousTemperatureIsAboutEachZonesMean) {
   ParticleStore p;
   const double r = 0.001, density = 2500.0, v = 0.3;

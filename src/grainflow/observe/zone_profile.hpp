@@ -46,8 +46,11 @@ class ZoneProfile {
   // mass read zero. For the zone velocity histories of Lan's spectra (section 4.3).
   std::vector<Vec3> instantaneous_mean_velocity(const ParticleStore& particles);
   std::vector<double> zone_centres() const;  // m, along the axis
-  // Lan's cell-average granular temperature now: the mass-weighted mean over zones of each zone's
-  // temperature about its instantaneous mean, (1/3) sum m |v - u(y,t)|^2 / sum m. Not accumulated.
+  // The zone temperature of the whole bed now (timeseries.csv's `zone_temperature`): the
+  // mass-weighted mean over zones of each zone's temperature about its instantaneous mean (eq. 3-1-9),
+  // sum m |v - u(y,t)|^2 / (D sum m) with partial-volume masses, D = 3 (2 for discs). Not Lan's
+  // cell-average temperature, which is about the whole cell's mean velocity (eq. 3-1-2,
+  // `cell_temperature`): this one leaves out the zones' collective motion. Not accumulated.
   double instantaneous_temperature(const ParticleStore& particles);
   // Full blocks available for the error bars; below 2 * kMinErrorBlocks the errors read NaN.
   long error_blocks() const { return static_cast<long>(blocks_.blocks().size()); }
