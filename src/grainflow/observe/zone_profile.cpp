@@ -19,19 +19,34 @@ ZoneProfile::ZoneProfile(int axis, double lo, double hi, double thickness, doubl
   }
 }
 
-// Calls visit(zone, partial volume, fraction of the sphere) for each zone free particle i overlaps.
+// Calls visit(zone, partial volume, fraction of the sphere, velocity) for each zone free particle i
+// overlaps. Along a periodic axis the sphere is first brought into [lo, hi) (a sphere not yet wrapped
+// since it crossed the seam), and the share beyond either end counts at the other as its image.
 template <class Visit>
 void ZoneProfile::for_each_overlap(const ParticleStore& p, std::size_t i, Visit&& visit) const {
-  const int zones = static_cast<int>(sums_.size());
   const double r = p.radius[i];
-  const double c = p.position[i][axis_];
+  const double whole = ball_measure(dimension_, r);
+  double c = p.position[i][axis_];
+  Vec3 v = p.velocity[i];
+  if (period_ > 0.0) {
+    const double turns = std::floor((c - lo_) / period_);
+    c -= turns * period_;
+    v -= turns * image_velocity_;
+    if (c - r < lo_) overlap_at(c + period_, r, whole, v + image_velocity_, visit);
+    if (c + r > hi_) overlap_at(c - period_, r, whole, v - image_velocity_, visit);
+  }
+  overlap_at(c, r, whole, v, visit);
+}
+
+template <class Visit>
+void ZoneProfile::overlap_at(double c, double r, double whole, const Vec3& v, Visit& visit) const {
+  const int zones = static_cast<int>(sums_.size());
   const int first = std::max(0, static_cast<int>(std::floor((c - r - lo_) / thickness_)));
   const int last = std::min(zones - 1, static_cast<int>(std::floor((c + r - lo_) / thickness_)));
-  const double whole = ball_measure(dimension_, r);
   for (int z = first; z <= last; ++z) {
     const double a = lo_ + z * thickness_;
     const double part = particle_slab_measure(dimension_, r, c, a, std::min(hi_, a + thickness_));
-    if (part > 0.0) visit(z, part, part / whole);
+    if (part > 0.0) visit(z, part, part / whole, v);
   }
 }
 
@@ -40,11 +55,11 @@ void ZoneProfile::fill_masses(const ParticleStore& p) {
   std::fill(scratch_.begin(), scratch_.end(), Sums{});
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.counted(i)) continue;
-    for_each_overlap(p, i, [&](int z, double part, double fraction) {
+    for_each_overlap(p, i, [&](int z, double part, double fraction, const Vec3& v) {
       const double m = p.mass[i] * fraction;
       scratch_[z].solid_volume += part;
       scratch_[z].mass += m;
-      scratch_[z].momentum += m * p.velocity[i];
+      scratch_[z].momentum += m * v;
     });
   }
   reduce(scratch_);
@@ -75,10 +90,9 @@ void ZoneProfile::fill_fluctuations(const ParticleStore& p) {
   std::fill(fluctuations_.begin(), fluctuations_.end(), Sums{});
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.counted(i)) continue;
-    for_each_overlap(p, i, [&](int z, double, double fraction) {
+    for_each_overlap(p, i, [&](int z, double, double fraction, const Vec3& v) {
       const double m = p.mass[i] * fraction;
       const Vec3 u = scratch_[z].momentum * (1.0 / scratch_[z].mass);
-      const Vec3 v = p.velocity[i];
       const Vec3 dv = v - u;
       fluctuations_[z].fluctuation_lan += Vec3{m * dv.x * dv.x, m * dv.y * dv.y, m * dv.z * dv.z};
       fluctuations_[z].second_moment += Vec3{m * v.x * v.x, m * v.y * v.y, m * v.z * v.z};

@@ -46,6 +46,13 @@ class ZoneProfile {
   // mass read zero. For the zone velocity histories of Lan's spectra (section 4.3).
   std::vector<Vec3> instantaneous_mean_velocity(const ParticleStore& particles);
   std::vector<double> zone_centres() const;  // m, along the axis
+  // Along a periodic axis the zones span exactly one period [lo, hi): a sphere straddling the seam
+  // counts in the zones at both ends, the share beyond the seam as its image, which moves at
+  // `image_velocity` relative to the sphere (Lees-Edwards: shear rate x period along x; else zero).
+  void set_period(const Vec3& image_velocity = {}) {
+    period_ = hi_ - lo_;
+    image_velocity_ = image_velocity;
+  }
   // The zone temperature of the whole bed now (timeseries.csv's `zone_temperature`): the
   // mass-weighted mean over zones of each zone's temperature about its instantaneous mean (eq. 3-1-9),
   // sum m |v - u(y,t)|^2 / (D sum m) with partial-volume masses, D = 3 (2 for discs). Not Lan's
@@ -76,9 +83,13 @@ class ZoneProfile {
   int axis_;
   int dimension_;
   double lo_, hi_, thickness_;  // m; the last zone ends at hi_
+  double period_ = 0.0;          // m, hi_ - lo_ along a periodic axis; 0: not periodic
+  Vec3 image_velocity_;          // m/s, of the image one period above
   std::vector<double> zone_volume_;  // m^3; the top zone may be cut by the domain's upper bound
   template <class Visit>
   void for_each_overlap(const ParticleStore& p, std::size_t i, Visit&& visit) const;
+  template <class Visit>
+  void overlap_at(double centre, double radius, double whole, const Vec3& velocity, Visit& visit) const;
   void fill_masses(const ParticleStore& p);
   void fill_fluctuations(const ParticleStore& p);
   void add_errors(std::vector<ZoneAverages>& out) const;

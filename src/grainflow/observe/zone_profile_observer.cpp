@@ -20,6 +20,9 @@ ZoneLayout::ZoneLayout(const RunContext& run) : axis(run.gravity_axis) {
 ZoneProfile ZoneLayout::profile(const RunContext& run) const {
   ZoneProfile p(axis, lo, hi, thickness, area, run.dimension);
   p.set_reduce(run.ranks);
+  const CaseConfig& c = *run.c;
+  // Lees-Edwards images slide along x across the y faces only.
+  if (c.domain.periodic(axis)) p.set_period(Vec3{axis == 1 ? c.lees_edwards_rate * (hi - lo) : 0.0, 0.0, 0.0});
   return p;
 }
 
