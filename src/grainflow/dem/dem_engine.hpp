@@ -168,7 +168,14 @@ class DemEngine {
         const int bump_face = std::max(p.wall[i], p.wall[j]);
         State memory = contacts_.pair_state[k];
         const ContactForce f = Law::force(bump_face < 0 ? pair_params_ : bump_params_[bump_face], law_state(memory), c, 0.0);
-        visit(static_cast<std::uint32_t>(i), -1, xj, f.normal * c.normal + f.tangential);
+        const Vec3 force = f.normal * c.normal + f.tangential;  // on i
+        if (bump_face < 0) {
+          visit(static_cast<std::uint32_t>(i), -1, xj, force);
+        } else if (p.wall[i] < 0) {  // a bump's push belongs to its wall: reported on the free partner
+          visit(static_cast<std::uint32_t>(i), bump_owner_[bump_face], xj, force);
+        } else {
+          visit(j, bump_owner_[bump_face], p.position[i] - shifts[pairs_.shift[k]], -force);
+        }
       }
     }
     for (std::size_t w = 0; w < s_.walls.size(); ++w) {
@@ -335,6 +342,7 @@ class DemEngine {
   std::vector<Vec3> wall_force_;        // N, each flat wall's force on the particles at the last evaluation
   DemCouetteServo servo_;
   std::array<int, 6> bump_wall_{};      // wall carrying each face's bumps, -1 when they stand still
+  std::array<int, 6> bump_owner_{};     // the bumpy wall of each face, -1 where there is none
   std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps
   RollingSetup rolling_;                         // Rolling only
   std::array<RollingParams, 6> bump_rolling_{};  // Rolling only: each face's bumps'

@@ -46,9 +46,11 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
   s_.particles.ghost.assign(s_.particles.size(), 0);
   contacts_.resize_walls(s_.walls.size(), s_.particles.size());
   bump_wall_.fill(-1);
+  bump_owner_.fill(-1);
   bump_params_.fill(pair_params_);
   for (std::size_t w = 0; w < s_.walls.size(); ++w) {
     if (!s_.walls[w].bumpy) continue;
+    bump_owner_[s_.walls[w].face] = static_cast<int>(w);
     bump_params_[s_.walls[w].face] = wall_params_[w];  // bumps carry their wall's e and mu
     if constexpr (Rolling) bump_rolling_[s_.walls[w].face] = rolling_.walls[w];
     if (s_.walls[w].motion.moves()) bump_wall_[s_.walls[w].face] = static_cast<int>(w);

@@ -54,7 +54,8 @@ struct Frame {
   std::function<void(const WallContactVisit&)> wall_contacts;
   // Soft spheres: calls visit(i, wall, from, force) for each touching contact once, with the force
   // on particle i and `from` the partner's centre (its image nearest i) or, for a wall (wall >= 0),
-  // the contact point on it.
+  // the contact point on it; a bumpy wall's bump reports as that wall (i the free particle, `from`
+  // the bump's centre), so that its load is the wall's.
   using ContactForceVisit = std::function<void(std::uint32_t, int, const Vec3&, const Vec3&)>;
   std::function<void(const ContactForceVisit&)> contact_forces;
 };
