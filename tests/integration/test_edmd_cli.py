@@ -7,9 +7,10 @@
   (packing fraction = 40 pi R^2 / box area; Z = P / (n m T)); timeseries.csv with its columns, one
   row per output interval, counters that never decrease and end at the summary's; final_state.csv
   with 40 discs, none overlapping another or the floor.
-- `--set run.collisions=N` stops the chute at the first output time after N collisions.
-- `run.protocol = "campbell"` runs the chute in segments of at most `segment_collisions` collisions
-  (to the first output after the budget), stops after `max_segments` with a warning when none
+- `--set run.collisions=N` stops the chute at its N-th particle collision exactly, with a last
+  timeseries row there.
+- `run.protocol = "campbell"` runs the chute in segments of exactly `segment_collisions` collisions
+  (Campbell's I5 field held at most 99,999), stops after `max_segments` with a warning when none
   converged, and otherwise at the first segment steady throughout by the section 2.5 check.
 - An elastic hard-disc gas run through the CLI reports a compressibility factor that matches
   Henderson's equation of state Z = (1 + phi^2/8) / (1 - phi)^2 (the summary's virial pressure,
@@ -120,8 +121,8 @@ def check_chute(exe, tmp):
 
 def check_run_in_collisions(exe, tmp):
     # [run] collisions = N (runs given in collisions, as Campbell's listings count them): the run
-    # stops at the first output time by which N particle collisions have happened, long before the
-    # case's duration of 500.
+    # stops at its N-th particle collision, long before the case's duration of 500, and writes a
+    # last row there.
     target = 20000
     out = os.path.join(tmp, "chute_collisions")
     status, _, err = run(exe, "run", CHUTE, "-o", out, "--quiet", "--set", f"run.collisions={target}")
@@ -130,16 +131,17 @@ def check_run_in_collisions(exe, tmp):
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
     rows = read_csv(os.path.join(out, "timeseries.csv"))
-    check(summary["collisions"] >= target, f"run.collisions: stopped after {summary['collisions']} < {target}")
+    check(summary["collisions"] == target, f"run.collisions: stopped after {summary['collisions']}, not {target}")
     check(summary["simulated_time"] < 500.0, f"run.collisions: ran to t = {summary['simulated_time']}")
-    check(len(rows) >= 2 and int(rows[-2]["collisions"]) < target,
-          f"run.collisions: did not stop at the first output after {target} collisions "
-          f"({[r['collisions'] for r in rows[-2:]]})")
+    check(len(rows) >= 2 and int(rows[-1]["collisions"]) == target and int(rows[-2]["collisions"]) < target,
+          f"run.collisions: the last rows do not end at {target} collisions ({[r['collisions'] for r in rows[-2:]]})")
+    check(abs(float(rows[-1]["time"]) - summary["simulated_time"]) < 1e-9 * summary["simulated_time"],
+          f"run.collisions: last row at t = {rows[-1]['time']}, the run ended at {summary['simulated_time']}")
 
 
 def check_campbell_protocol(exe, tmp):
     # Segments of 20,000 collisions, at most 3: the 30 degree chute is still accelerating then, so
-    # no segment passes the check; each ends at the first output row past its budget.
+    # no segment passes the check; each ends at its budget's last collision exactly.
     budget, most = 20000, 3
     out = os.path.join(tmp, "chute_segments")
     status, _, err = run(exe, "run", CHUTE, "-o", out, "--quiet", "--set", 'run.protocol="campbell"', "--set",
@@ -149,17 +151,16 @@ def check_campbell_protocol(exe, tmp):
     with open(os.path.join(out, "summary.json")) as f:
         summary = json.load(f)
     rows = read_csv(os.path.join(out, "timeseries.csv"))
-    collisions = [int(r["collisions"]) for r in rows]
-    per_row = max(b - a for a, b in zip(collisions, collisions[1:]))
     check(summary["protocol"] == "campbell", f"campbell protocol: protocol {summary.get('protocol')!r}")
     check(summary["segments"] == most and not summary["segment_converged"],
           f"campbell protocol: {summary['segments']} segments, converged {summary['segment_converged']}: expected "
           f"{most}, not converged (the chute still accelerates)")
-    check(budget <= summary["segment_collisions"] < budget + per_row,
-          f"campbell protocol: last segment {summary['segment_collisions']} collisions, budget {budget} "
-          f"(+ at most one row's {per_row})")
-    check(most * budget <= summary["collisions"] < most * (budget + per_row),
+    check(summary["segment_collisions"] == budget,
+          f"campbell protocol: last segment {summary['segment_collisions']} collisions, budget {budget}")
+    check(summary["collisions"] == most * budget,
           f"campbell protocol: {summary['collisions']} collisions in {most} segments of {budget}")
+    ends = [int(r["collisions"]) for r in rows if int(r["collisions"]) % budget == 0 and int(r["collisions"]) > 0]
+    check(ends == [budget * (k + 1) for k in range(most)], f"campbell protocol: rows at the segments' ends {ends}")
     check(any("Campbell's protocol" in w for w in summary["warnings"]),
           f"campbell protocol: no warning that no segment converged: {summary['warnings']}")
     # Campbell's own budget of 99,999: a later segment is steady throughout, and the run stops there.
@@ -175,9 +176,7 @@ def check_campbell_protocol(exe, tmp):
           f"segment from {summary['segment_start_time']}")
     check(summary["averaged_when_steady"] and summary["warnings"] == [],
           f"campbell protocol: the converged segment's averages are not the steady ones: {summary['warnings']}")
-    collisions = [int(r["collisions"]) for r in read_csv(os.path.join(out, "timeseries.csv"))]
-    per_row = max(b - a for a, b in zip(collisions, collisions[1:]))
-    check(99999 <= summary["segment_collisions"] < 99999 + per_row,
+    check(summary["segment_collisions"] == 99999,
           f"campbell protocol: the converged segment has {summary['segment_collisions']} collisions")
 
 

@@ -30,7 +30,8 @@ EdmdEngine<Dim>::EdmdEngine(EdmdState state, bool neighbor_lists) : s_(std::move
 }
 
 template <int Dim>
-void EdmdEngine<Dim>::advance_to(double t_end) {
+template <bool Limited>
+void EdmdEngine<Dim>::process_events(double t_end, long long collision_limit) {
   const std::size_t n = s_.particles.size();
   if (n == 0) {
     s_.time = t_end;
@@ -45,6 +46,12 @@ void EdmdEngine<Dim>::advance_to(double t_end) {
     update_width();
     process(i);
     if (s_.servo.enabled && servo_.due(s_, counters_.collisions)) servo_update();
+    if constexpr (Limited) {
+      if (counters_.collisions >= collision_limit) {
+        t_end = t;
+        break;
+      }
+    }
   }
   synchronize(t_end);
 }
@@ -81,5 +88,9 @@ void EdmdEngine<Dim>::repredict_all() {
 }
 template class EdmdEngine<2>;
 template class EdmdEngine<3>;
+template void EdmdEngine<2>::process_events<false>(double, long long);
+template void EdmdEngine<2>::process_events<true>(double, long long);
+template void EdmdEngine<3>::process_events<false>(double, long long);
+template void EdmdEngine<3>::process_events<true>(double, long long);
 
 }  // namespace grainflow::edmd

@@ -104,7 +104,15 @@ class EdmdEngine {
   }
 
   // Processes every event up to time `t_end`, then brings all particles to `t_end`.
-  void advance_to(double t_end);
+  void advance_to(double t_end) { process_events<false>(t_end, 0); }
+  // The same, but stops at the particle collision that brings the count to `collision_limit`
+  // (a run's or a segment's budget, counted exactly as Campbell's listings did) and brings all
+  // particles to its time. True when it stopped there.
+  bool advance_to(double t_end, long long collision_limit) {
+    if (counters_.collisions >= collision_limit) return true;
+    process_events<true>(t_end, collision_limit);
+    return counters_.collisions >= collision_limit;
+  }
 
   // The stall detector (stall_detector.hpp) sees every event.
   void check_progress(std::uint32_t i);
@@ -136,6 +144,9 @@ class EdmdEngine {
   void repredict_all();
 
  private:
+  template <bool Limited>
+  void process_events(double t_end, long long collision_limit);
+
   enum class Kind : std::uint8_t { none, pair, wall, cell, expiry };
   struct Event {
     Kind kind = Kind::none;

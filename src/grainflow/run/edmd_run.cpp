@@ -62,6 +62,7 @@ class EdmdRun {
   template <class E> void bind_frame(E& e);
   template <class E> const observe::Frame& frame_now(E& e);
   template <class E> void listen_to_collisions(E& e);
+  long long collision_budget() const;
   template <class E> bool end_segment(E& e);
   double next_sample_time() const;
   double first_profile_sample() const;
@@ -261,8 +262,11 @@ void EdmdRun::event_loop(E& e) {
       if ((interrupted = pending_interrupt()) != 0) break;
       const double next_row = std::min(end_time, row * c.output.interval);
       const double next_shot = snapshots ? grid_time(shot, c.output.snapshot_interval, end_time) : kNeverTime;
-      const double t = std::min({next_row, next_shot, next_sample_time()});
-      e.advance_to(t);
+      double t = std::min({next_row, next_shot, next_sample_time()});
+      // A collision budget (the run's, or a Campbell segment's) ends at its last collision exactly,
+      // with a row there.
+      const bool budget_spent = e.advance_to(t, collision_budget());
+      t = e.state().time;
       if (next_sample_time() <= t) {
         const observe::Frame& now = frame_now(e);
         for (auto& o : observers)
@@ -273,8 +277,8 @@ void EdmdRun::event_loop(E& e) {
         snapshots->add(e.state().particles, e.state().time);
         ++shot;
       }
-      if (next_row > t) continue;
-      ++row;
+      if (next_row > t && !budget_spent) continue;
+      if (next_row <= t) ++row;
       record(e);
       progress->update(t);
       if (t >= end_time) break;
@@ -293,6 +297,14 @@ void EdmdRun::event_loop(E& e) {
     e.synchronize(e.state().time);  // the outputs show every particle at one instant
     throw;
   }
+}
+
+// The particle-collision count at which the run or the current Campbell segment ends.
+long long EdmdRun::collision_budget() const {
+  long long budget = std::numeric_limits<long long>::max();
+  if (c.run.collisions > 0) budget = c.run.collisions;
+  if (c.run.protocol == "campbell") budget = std::min(budget, segment_start_collisions + c.run.segment_collisions);
+  return budget;
 }
 
 // The end of one of Campbell's segments: the section 2.5 check on its kinetic-energy rows. It has
@@ -347,7 +359,7 @@ void EdmdRun::write_timeseries() const {
     out << "# units: time s, energies J, granular_temperature m^2/s^2 (per degree of freedom), pressure "
         << (dim == 2 ? "N/m" : "Pa")
         << " (kinetic + collisional virial over the interval), dissipated J; energy budget since the start:"
-           " energy_input (gravity along periodic axes, walls, boundaries), energy_change (kinetic + rotational +"
+           " energy_input (gravity along periodic axes, walls, boundaries: sliding images, re-separation shifts), energy_change (kinetic + rotational +"
            " potential), energy_dissipated J, energy_budget_residual (input - change - dissipated) / max(|input|,"
            " |dissipated|)\n";
     const bool servo = c.servo.enabled;
