@@ -7,6 +7,8 @@ case files and outputs of a serial run.
   differ, by round-off (1e-16 relative), which 300 steps of a dense bed amplify to at most ~1e-12 of
   a diameter; a lost pair or contact history would move particles by >= 1e-7 d within a few steps
   (a tangential force of mu k1 delta on a 3 mm glass sphere). The bound, 1e-9 d, lies between.
+- Its energy budget (every input part, the change, the dissipation) is one rank's to 1e-9 of the
+  input, summed over the ranks.
 - The summary shows particles did cross between ranks and ghosts were held, so the comparison
   covers the exchange.
 - A longer run on 1 and 2 ranks gives statistically identical profiles: each zone's solids fraction
@@ -133,6 +135,17 @@ def main():
             for a, b in zip(rows_serial, rows):
                 for key in ("contacts", "wall_contacts", "collisions", "wall_collisions", "neighbor_rebuilds"):
                     check(a[key] == b[key], f"{ranks} ranks, t = {a['time']}: {key} {b[key]}, one rank {a[key]}")
+            # The energy budget is summed over the ranks (each books its own particles' and contacts'
+            # work): every part equals one rank's to the round-off the positions show (1e-9 of the
+            # input), and the budget closes as tightly; a rank's share left out would miss ~1/N of it.
+            serial_summary = json.load(open(os.path.join(out[1], "summary.json")))
+            scale = abs(serial_summary["energy_input"])
+            for key in ("energy_input", "energy_input_gravity", "energy_input_walls", "energy_input_growth",
+                        "energy_change", "energy_dissipated"):
+                check(abs(summary[key] - serial_summary[key]) <= 1e-9 * scale,
+                      f"{ranks} ranks: {key} {summary[key]!r}, one rank {serial_summary[key]!r}")
+            check(scale > 0 and abs(summary["energy_budget_residual"]) < 1e-3,
+                  f"{ranks} ranks: energy budget residual {summary['energy_budget_residual']}")
 
         # Walls across the cut axis; walls on all four sides, where 4 ranks take a 2 x 2 grid of
         # columns (2 cut planes against 3 for slabs), so that particles cross edges and corners of

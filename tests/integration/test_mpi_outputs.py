@@ -291,7 +291,13 @@ def main():
         command = ["mpirun", "--oversubscribe", "-np", "2", exe, "run", case, "-o", stopped, "--quiet", *SHORT,
                    "--set", "run.duration=20"]
         process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=mpi_environment())
-        time.sleep(3.0)
+        # The signal goes once both ranks are stepping (each has written its piece of the second
+        # snapshot), not after a guessed time: a rank still starting up would die of it.
+        pieces = [os.path.join(stopped, "snapshots", f"particles_000001_rank{r}.vtu") for r in (0, 1)]
+        deadline = time.monotonic() + 300.0
+        while not all(os.path.exists(p) for p in pieces) and process.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+        check(process.poll() is None, "SIGTERM on 2 ranks: the run ended before both ranks wrote a snapshot")
         process.send_signal(signal.SIGTERM)
         _, err = process.communicate()
         summary_path = os.path.join(stopped, "summary.json")

@@ -129,6 +129,12 @@ def main():
         rate = N * summary.get("steps", 0) / max(summary.get("wall_seconds", 1), 1e-12)
         check(abs(summary.get("particle_steps_per_second", 0) - rate) < 1e-6 * rate,
               f"particle_steps_per_second = {summary.get('particle_steps_per_second')}, particles * steps / wall_seconds = {rate}")
+        # Lan's T_x, T_y, T_z (Table 4.6) are the components' shares of the cell-average temperature:
+        # they add up to it (to the 10 digits printed), and the vertical drive makes T_y the largest.
+        parts = [summary.get(f"cell_temperature_{a}", float("nan")) for a in "xyz"]
+        total = summary.get("cell_temperature", float("nan"))
+        check(abs(sum(parts) / total - 1.0) < 1e-8, f"cell_temperature_x/_y/_z {parts} add up to {sum(parts)}, not {total}")
+        check(parts[1] > max(parts[0], parts[2]), f"cell temperature components {parts}: T_y is not the largest")
         # Lan's criterion (section 4.1.3): the overlap stays below 1% of d (halt_overlap also enforces it).
         overlap = summary.get("max_overlap_over_diameter", 1.0)
         check(0.0 < overlap < 0.01, f"max_overlap_over_diameter = {overlap}, must lie in (0, 0.01)")

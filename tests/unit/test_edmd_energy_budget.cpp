@@ -215,3 +215,46 @@ duration = 2.0
   EXPECT_EQ(e.counters().collisions, 1);
   EXPECT_NEAR(std::fabs(p.position[1].x - p.position[0].x), 2.0 * (1.0 + 1e-5) + 1.0, 1e-12);
 }
+
+// The same at a wall: a disc (R = 1) meets the floor at speed 1 at t = 4 with e_w = 0.5; the
+// rebound leaves its centre 1.00001 R from the wall, so at t = 6 it stands at 1.00001 + 0.5 x 2.
+// Without the shift it would stand at 2 exactly: the 1e-5 is a million times the bound.
+TEST(EdmdReseparation, AWallReboundLeavesTheDiscAtTheListingsDistance) {
+  const char* disc = R"(
+[engine]
+kind = "edmd"
+dimension = 2
+[domain]
+lo = [0.0, 0.0, 0.0]
+hi = [40.0, 40.0, 1.0]
+boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
+[gravity]
+vector = [0.0, 0.0, 0.0]
+[[species]]
+name = "disc"
+diameter = 2.0
+density = 0.3183098861837907
+[particles]
+init = "file"
+file = "DISC"
+[collision]
+restitution = 0.5
+separation_gap = 1.0e-5
+[walls.ylo]
+restitution = 0.5
+[run]
+duration = 6.0
+)";
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / ("gf_wall_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string file = (dir / "disc.csv").string();
+  std::ofstream(file) << "species,x,y,z,vx,vy,vz\ndisc,10,5,0.5,0,-1,0\n";
+  std::string text = disc;
+  text.replace(text.find("DISC"), 4, file);
+  const CaseConfig c = load_case_from_string(text, "disc.toml");
+  std::filesystem::remove_all(dir);
+  edmd::EdmdEngine<2> e(edmd::build_edmd_state(c));
+  e.advance_to(6.0);
+  EXPECT_EQ(e.counters().wall_collisions, 1);
+  EXPECT_NEAR(e.state().particles.position[0].y, 1.0 + 1e-5 + 0.5 * 2.0, 1e-12);
+}

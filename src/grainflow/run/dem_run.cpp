@@ -55,7 +55,7 @@ void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>&
            "bed_height m (above the floor), bulk_solids_fraction 1, cell_temperature m^2/s^2 (Lan's cell average: about "
            "the whole cell's mean velocity, eq. 3-1-2), zone_temperature m^2/s^2 (about each zone's instantaneous mean, "
            "eq. 3-1-9, mass-weighted over the bed), collisions and wall_collisions: contacts begun since the start; energy budget since the "
-           "start: energy_input (gravity along periodic axes, walls, growth), energy_change (kinetic + rotational + "
+           "start: energy_input (gravity along periodic axes, walls and their bumps, boundaries: sliding images, growth), energy_change (kinetic + rotational + "
            "potential + elastic), energy_dissipated J, energy_budget_residual (input - change - dissipated) / "
            "max(|input|, |dissipated|)\n";
     if (servo) out << "# servo: gap m, wall_speed m/s (> 0 opening), wall_stress as pressure (the last update's), top_speed m/s\n";
