@@ -51,7 +51,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLImageDataReader
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gftest import check, executable_from_argv, finish, read_csv, run, write_text  # noqa: E402
+from gftest import check, executable_from_argv, finish, read_csv, run, run_case_text, write_text  # noqa: E402
 
 ANGLE = math.radians(10.0)
 WIDTH = 6.0  # the box is WIDTH x 30 x WIDTH, periodic in x and z
@@ -206,11 +206,8 @@ BUMPY_BED = (BED.replace('y = ["wall", "open"]', 'y = ["bumpy", "open"]')
 
 
 def check_bumpy_floor(exe, tmp):
-    case = os.path.join(tmp, "bumpy_bed.toml")
-    write_text(case, BUMPY_BED)
-    out = os.path.join(tmp, "bumpy_bed")
-    status, _, err = run(exe, "run", case, "-o", out, "--quiet")
-    if not check(status == 0, f"bumpy bed: exited {status}: {err.strip()}"):
+    out = run_case_text(exe, tmp, "bumpy_bed", BUMPY_BED)
+    if out is None:
         return
     strips = read_csv(os.path.join(out, "stresses.csv"))
     floor = read_csv(os.path.join(out, "walls.csv"))[0]
@@ -235,11 +232,8 @@ def check_bumpy_floor(exe, tmp):
 
 
 def check_flowing_chute(exe, tmp):
-    case = os.path.join(tmp, "chute.toml")
-    write_text(case, CHUTE)
-    out = os.path.join(tmp, "chute")
-    status, _, err = run(exe, "run", case, "-o", out, "--quiet")
-    if not check(status == 0, f"chute: exited {status}: {err.strip()}"):
+    out = run_case_text(exe, tmp, "chute", CHUTE)
+    if out is None:
         return
     strips = read_csv(os.path.join(out, "stresses.csv"))
     fullest = max(value(s, "number") for s in strips)

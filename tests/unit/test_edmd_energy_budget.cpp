@@ -9,14 +9,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <string>
-
-#include <unistd.h>
 
 #include "grainflow/edmd/edmd_engine.hpp"
 #include "grainflow/run/case_loader.hpp"
+#include "test_support.hpp"
 
 using namespace grainflow;
 
@@ -174,17 +171,21 @@ TEST(EdmdEnergyBudget, ClosesWithCampbellsReseparation) {
   EXPECT_NEAR(b.input() - b.change - b.dissipated, 0.0, kRoundOff * b.input());
 }
 
-// Two discs (R = 1) meet head on at relative speed 2 with e = 0.5: after the collision at t = 1
-// they are (1 + 1e-5) 2R apart, then separate at e x 2 = 1: at t = 2 their distance is 2.00002 + 1.
-TEST(EdmdReseparation, APairLeavesItsCollisionAtTheListingsDistance) {
-  const char* pair = R"(
+// Discs of R = 1 and unit mass in a 40 x 40 cell, periodic along x, with e = 0.5 and Campbell's
+// re-separation gap of 1e-5 R, started from `rows` (species,x,y,z,vx,vy,vz), with `y_boundary` along
+// y and the tables in `extra`.
+namespace {
+CaseConfig reseparation_case(const std::string& rows, const std::string& y_boundary, const std::string& extra,
+                             double duration) {
+  const test::ParticleFile file("discs.csv", rows);
+  const std::string text = R"(
 [engine]
 kind = "edmd"
 dimension = 2
 [domain]
 lo = [0.0, 0.0, 0.0]
 hi = [40.0, 40.0, 1.0]
-boundary = { x = "periodic", y = "periodic", z = "periodic" }
+boundary = { x = "periodic", y = )" + y_boundary + R"(, z = "periodic" }
 [gravity]
 vector = [0.0, 0.0, 0.0]
 [[species]]
@@ -193,22 +194,19 @@ diameter = 2.0
 density = 0.3183098861837907
 [particles]
 init = "file"
-file = "PAIR"
+file = ")" + file.path() + R"("
 [collision]
 restitution = 0.5
 separation_gap = 1.0e-5
-[run]
-duration = 2.0
-)";
-  const std::string rows = "disc,10,20,0.5,1,0,0\ndisc,14,20,0.5,-1,0,0\n";
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / ("gf_pair_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const std::string file = (dir / "pair.csv").string();
-  std::ofstream(file) << "species,x,y,z,vx,vy,vz\n" << rows;
-  std::string text = pair;
-  text.replace(text.find("PAIR"), 4, file);
-  const CaseConfig c = load_case_from_string(text, "pair.toml");
-  std::filesystem::remove_all(dir);
+)" + extra + "[run]\nduration = " + std::to_string(duration) + "\n";
+  return load_case_from_string(text, "discs.toml");
+}
+}  // namespace
+
+// Two discs meet head on at relative speed 2: after the collision at t = 1 they are (1 + 1e-5) 2R
+// apart, then separate at e x 2 = 1: at t = 2 their distance is 2.00002 + 1.
+TEST(EdmdReseparation, APairLeavesItsCollisionAtTheListingsDistance) {
+  const CaseConfig c = reseparation_case("disc,10,20,0.5,1,0,0\ndisc,14,20,0.5,-1,0,0\n", "\"periodic\"", "", 2.0);
   edmd::EdmdEngine<2> e(edmd::build_edmd_state(c));
   e.advance_to(2.0);
   const auto& p = e.state().particles;
@@ -216,43 +214,11 @@ duration = 2.0
   EXPECT_NEAR(std::fabs(p.position[1].x - p.position[0].x), 2.0 * (1.0 + 1e-5) + 1.0, 1e-12);
 }
 
-// The same at a wall: a disc (R = 1) meets the floor at speed 1 at t = 4 with e_w = 0.5; the
-// rebound leaves its centre 1.00001 R from the wall, so at t = 6 it stands at 1.00001 + 0.5 x 2.
-// Without the shift it would stand at 2 exactly: the 1e-5 is a million times the bound.
+// The same at a wall: a disc meets the floor at speed 1 at t = 4 with e_w = 0.5; the rebound
+// leaves its centre 1.00001 R from the wall, so at t = 6 it stands at 1.00001 + 0.5 x 2. Without
+// the shift it would stand at 2 exactly: the 1e-5 is a million times the bound.
 TEST(EdmdReseparation, AWallReboundLeavesTheDiscAtTheListingsDistance) {
-  const char* disc = R"(
-[engine]
-kind = "edmd"
-dimension = 2
-[domain]
-lo = [0.0, 0.0, 0.0]
-hi = [40.0, 40.0, 1.0]
-boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
-[gravity]
-vector = [0.0, 0.0, 0.0]
-[[species]]
-name = "disc"
-diameter = 2.0
-density = 0.3183098861837907
-[particles]
-init = "file"
-file = "DISC"
-[collision]
-restitution = 0.5
-separation_gap = 1.0e-5
-[walls.ylo]
-restitution = 0.5
-[run]
-duration = 6.0
-)";
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / ("gf_wall_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  const std::string file = (dir / "disc.csv").string();
-  std::ofstream(file) << "species,x,y,z,vx,vy,vz\ndisc,10,5,0.5,0,-1,0\n";
-  std::string text = disc;
-  text.replace(text.find("DISC"), 4, file);
-  const CaseConfig c = load_case_from_string(text, "disc.toml");
-  std::filesystem::remove_all(dir);
+  const CaseConfig c = reseparation_case("disc,10,5,0.5,0,-1,0\n", "[\"wall\", \"open\"]", "[walls.ylo]\nrestitution = 0.5\n", 6.0);
   edmd::EdmdEngine<2> e(edmd::build_edmd_state(c));
   e.advance_to(6.0);
   EXPECT_EQ(e.counters().wall_collisions, 1);
