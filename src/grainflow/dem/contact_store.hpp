@@ -102,10 +102,11 @@ struct ContactStore {
       for (std::uint32_t k = new_list.offsets[i]; k < new_list.offsets[i + 1]; ++k) {
         const std::uint32_t j = new_list.partner[k];
         const std::uint32_t partner_id = ids[j];
-        const auto image = image_key(new_list.shift[k], images[i], images[j], shear_turns);
         for (std::uint32_t q = begin; q < end; ++q) {
           const KeptPair& entry = kept[order[q]];
-          if (entry.b != partner_id || entry.image != image) continue;
+          // The image key only for a kept pair with this partner (most listed pairs have none).
+          if (entry.b != partner_id || entry.image != image_key(new_list.shift[k], images[i], images[j], shear_turns))
+            continue;
           pair_state[k] = entry.state;  // no break: a later entry for the pair wins
           pair_touching[k] = 1;
         }

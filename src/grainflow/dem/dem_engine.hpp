@@ -284,8 +284,9 @@ class DemEngine {
     return c;
   }
 
-  // With `measure`, returns the contact forces' power on the kicked velocities (contact_power()).
-  double half_kick(bool measure = false);
+  // With `Measure`, returns the contact forces' power on the kicked velocities (contact_power()).
+  template <bool Measure>
+  double half_kick();
 
   // W: the contact forces' (all but gravity) power on free particle i, torques included.
   double particle_contact_power(std::size_t i) const;
@@ -309,6 +310,11 @@ class DemEngine {
   void fit_grid_to_domain();
 
   void pair_forces(double dt);
+  // The pair loop with the terms only some runs need chosen once per evaluation, not tested per
+  // pair: `Bumps`, wall bumps exist (their contact parameters and their work on the grains);
+  // `Extras`, radii grow or Lees–Edwards rows slide (growth's and the seam's power, the images' velocity).
+  template <bool Bumps, bool Extras>
+  void pair_forces_with(double dt);
 
   void wall_forces(double dt);
   // The Couette servo after a step: the walls' impulse, and an update when one is due.
@@ -344,6 +350,7 @@ class DemEngine {
   std::array<int, 6> bump_wall_{};      // wall carrying each face's bumps, -1 when they stand still
   std::array<int, 6> bump_owner_{};     // the bumpy wall of each face, -1 where there is none
   std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps
+  bool has_bumps_ = false;               // any wall bumps among the particles (from the whole initial state)
   RollingSetup rolling_;                         // Rolling only
   std::array<RollingParams, 6> bump_rolling_{};  // Rolling only: each face's bumps'
   std::unique_ptr<DomainExchange<State>> domain_;  // MPI ranks > 1 only

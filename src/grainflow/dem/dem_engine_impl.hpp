@@ -48,6 +48,7 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
   bump_wall_.fill(-1);
   bump_owner_.fill(-1);
   bump_params_.fill(pair_params_);
+  has_bumps_ = std::any_of(s_.particles.wall.begin(), s_.particles.wall.end(), [](auto face) { return face >= 0; });
   for (std::size_t w = 0; w < s_.walls.size(); ++w) {
     if (!s_.walls[w].bumpy) continue;
     bump_owner_[s_.walls[w].face] = static_cast<int>(w);
@@ -156,7 +157,7 @@ void DemEngine<Law, Rolling>::step() {
   ParticleStore& p = s_.particles;
   const double dt = s_.time_step;
   const std::size_t n = p.size();
-  half_kick();
+  half_kick<false>();
   for_each_slice(threads_, n, [&](int, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
       if (p.motion[i] == Motion::free && !p.ghost[i]) p.position[i] += dt * p.velocity[i];
@@ -171,7 +172,7 @@ void DemEngine<Law, Rolling>::step() {
   if (domain_ ? domain_->any(needs_rebuild()) : needs_rebuild()) rebuild(false);
   const double contact_before = energy_.contact_power, wall_before = energy_.wall_power, seam_before = energy_.seam_power;
   compute_forces(dt);
-  energy_.contact_power = half_kick(true);
+  energy_.contact_power = half_kick<true>();
   energy_.contact_work += 0.5 * dt * (contact_before + energy_.contact_power);
   energy_.wall_work += 0.5 * dt * (wall_before + energy_.wall_power);
   energy_.seam_contact_work += 0.5 * dt * (seam_before + energy_.seam_power);
@@ -225,16 +226,21 @@ std::vector<observe::Coordination> DemEngine<Law, Rolling>::coordination() const
 }
 
 template <class Law, bool Rolling>
-double DemEngine<Law, Rolling>::half_kick(bool measure) {
+template <bool Measure>
+double DemEngine<Law, Rolling>::half_kick() {
   ParticleStore& p = s_.particles;
   const double half = 0.5 * s_.time_step;
   const std::size_t n = p.size();
   return reduce_slices(threads_, n, 0.0, [&](int, std::size_t begin, std::size_t end, double& power) {
     for (std::size_t i = begin; i < end; ++i) {
       if (p.motion[i] != Motion::free || p.ghost[i]) continue;
-      p.velocity[i] += (half * p.inv_mass[i]) * p.force[i];
-      p.angular_velocity[i] += (half * p.inv_inertia[i]) * p.torque[i];
-      if (measure) power += particle_contact_power(i);
+      const Vec3 force = p.force[i], torque = p.torque[i];
+      const Vec3 v = p.velocity[i] + (half * p.inv_mass[i]) * force;
+      const Vec3 w = p.angular_velocity[i] + (half * p.inv_inertia[i]) * torque;
+      p.velocity[i] = v;
+      p.angular_velocity[i] = w;
+      // particle_contact_power(i), written out here so that it inlines into the loop
+      if constexpr (Measure) power += dot(force - p.mass[i] * s_.gravity, v) + dot(torque, w);
     }
   });
 }
@@ -412,6 +418,19 @@ void DemEngine<Law, Rolling>::fit_grid_to_domain() {
 
 template <class Law, bool Rolling>
 void DemEngine<Law, Rolling>::pair_forces(double dt) {
+  const bool extras = s_.expansion_rate > 0.0 || s_.box.shear_velocity != 0.0;
+  if (has_bumps_) {
+    if (extras) pair_forces_with<true, true>(dt);
+    else pair_forces_with<true, false>(dt);
+  } else {
+    if (extras) pair_forces_with<false, true>(dt);
+    else pair_forces_with<false, false>(dt);
+  }
+}
+
+template <class Law, bool Rolling>
+template <bool Bumps, bool Extras>
+void DemEngine<Law, Rolling>::pair_forces_with(double dt) {
   ParticleStore& p = s_.particles;
   const std::size_t n = p.size();
   const auto shifts = s_.box.shift_table();
@@ -424,14 +443,15 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
   ForceLoopSums before;
   before.max_ratio = stats_.max_overlap_ratio;
   const double growth_rate = s_.expansion_rate;
-  const double seam_velocity = s_.box.shear_velocity;
+  const bool sliding = s_.box.shear_velocity != 0.0;
   // Each thread owns a contiguous range of particles and adds to their forces directly; a
   // partner owned by another thread gets its share in this thread's buffer (a few percent of
   // the pairs: the particles are sorted by cell, so a range is a slab of space).
   const ForceLoopSums sums = reduce_slices(threads, n, before, [&](int t, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
-    double& max_ratio = sum.max_ratio;
-    double &bump_power = sum.boundary_power, &growth_power = sum.growth_power, &seam_power = sum.seam_power;
-    long &contacts = sum.contacts, &begun = sum.begun;
+    // Running sums in locals, stored once at the slice's end: through `sum` each contact would
+    // store them to memory.
+    double max_ratio = 0.0, bump_power = 0.0, growth_power = 0.0, seam_power = 0.0;
+    long contacts = 0, begun = 0;
     Vec3* force = p.force.data();
     Vec3* torque = p.torque.data();
     Vec3* foreign_force = threads > 1 ? thread_force_[t].data() : force;
@@ -456,9 +476,12 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
           begun += counted;
         }
         const std::uint8_t code = pairs_.shift[k];
-        const ContactKinematics c = pair_kinematics(i, j, d, std::sqrt(r2), s_.box.image_velocity(code));
-        const int bump_face = std::max(p.wall[i], p.wall[j]);  // -1 unless one is a wall bump
-        const Params& params = bump_face < 0 ? pair_params_ : bump_params_[bump_face];
+        // A sliding row's image moves relative to its particle; in a still box no image does.
+        const Vec3 image_velocity = Extras ? s_.box.image_velocity(code) : Vec3{};
+        const ContactKinematics c = pair_kinematics(i, j, d, std::sqrt(r2), image_velocity);
+        int bump_face = -1;  // unless one is a wall bump
+        if constexpr (Bumps) bump_face = std::max(p.wall[i], p.wall[j]);
+        const Params& params = Bumps && bump_face >= 0 ? bump_params_[bump_face] : pair_params_;
         const ContactForce f = Law::force(params, law_state(contacts_.pair_state[k]), c, dt);
         const Vec3 total = f.normal * c.normal + f.tangential;
         const Vec3 arm = cross(c.normal, f.tangential);  // torque = -r n x F_t on both
@@ -466,7 +489,7 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
         torque[i] -= ri * arm;
         Vec3 torque_j = -rj * arm;
         if constexpr (Rolling) {  // a couple: +M on i, -M on j
-          const RollingParams& rolling = bump_face < 0 ? rolling_.pair : bump_rolling_[bump_face];
+          const RollingParams& rolling = Bumps && bump_face >= 0 ? bump_rolling_[bump_face] : rolling_.pair;
           const Vec3 m = RollingResistance::torque(rolling, contacts_.pair_state[k].rolling,
                                                    rolling_kinematics(rolling, i, j, c, f.normal), dt);
           torque[i] += m;
@@ -482,14 +505,24 @@ void DemEngine<Law, Rolling>::pair_forces(double dt) {
         }
         max_ratio = std::max(max_ratio, c.overlap / (2.0 * std::min(ri, rj)));
         contacts += counted;
-        if (bump_face >= 0 && counted) [[unlikely]]  // a bump's work on its free partner, at the bump's velocity
-          bump_power += dot(p.wall[i] >= 0 ? -total : total, s_.bump_velocity[bump_face]);
-        if (growth_rate > 0.0 && counted) [[unlikely]]
-          growth_power += f.normal * growth_rate * ((ri < p.target_radius[i]) + (rj < p.target_radius[j]));
-        if (seam_velocity != 0.0 && counted) [[unlikely]]  // F . (v_j's image - v_j): the seam's work
-          seam_power += total.x * s_.box.image_velocity(code).x;
+        if constexpr (Bumps) {
+          if (bump_face >= 0 && counted)  // a bump's work on its free partner, at the bump's velocity
+            bump_power += dot(p.wall[i] >= 0 ? -total : total, s_.bump_velocity[bump_face]);
+        }
+        if constexpr (Extras) {
+          if (growth_rate > 0.0 && counted)
+            growth_power += f.normal * growth_rate * ((ri < p.target_radius[i]) + (rj < p.target_radius[j]));
+          if (sliding && counted)  // F . (v_j's image - v_j): the seam's work
+            seam_power += total.x * image_velocity.x;
+        }
       }
     }
+    sum.max_ratio = max_ratio;
+    sum.boundary_power = bump_power;
+    sum.growth_power = growth_power;
+    sum.seam_power = seam_power;
+    sum.contacts = contacts;
+    sum.begun = begun;
   });
   if (threads > 1) {  // the buffers' shares, each entry cleared after use (listed once per pair)
     for (int t = 0; t < threads; ++t) {
@@ -526,6 +559,7 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
     Vec3 normal;
     normal[wall.axis] = wall.inward;
     const ForceLoopSums sums = reduce_slices(threads_, n, ForceLoopSums{}, [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
+      ForceLoopSums local;  // in registers, stored once at the slice's end
       for (std::size_t i = begin; i < end; ++i) {
         if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
         const double ri = p.radius[i];
@@ -537,7 +571,7 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
         if (!touching[i]) {
           touching[i] = 1;
           states[i] = State{};
-          ++sum.begun;
+          ++local.begun;
         }
         const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
         const ContactForce f = Law::force(params, law_state(states[i]), c, dt);
@@ -547,12 +581,13 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
         if constexpr (Rolling)
           p.torque[i] += RollingResistance::torque(rolling_.walls[w], states[i].rolling,
                                                    rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal), dt);
-        sum.boundary_power += dot(total, wall.velocity);
-        sum.force += total;
-        if (growth_rate > 0.0 && ri < p.target_radius[i]) sum.growth_power += f.normal * growth_rate;
-        sum.max_ratio = std::max(sum.max_ratio, c.overlap / (2.0 * ri));
-        ++sum.contacts;
+        local.boundary_power += dot(total, wall.velocity);
+        local.force += total;
+        if (growth_rate > 0.0 && ri < p.target_radius[i]) local.growth_power += f.normal * growth_rate;
+        local.max_ratio = std::max(local.max_ratio, c.overlap / (2.0 * ri));
+        ++local.contacts;
       }
+      sum = local;
     });
     wall_force_[w] = sums.force;
     all += sums;

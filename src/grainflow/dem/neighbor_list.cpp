@@ -79,7 +79,7 @@ void CellGrid::bin(const std::vector<Vec3>& position) {
 // images along a narrow periodic axis, and the particle's own images). Framed: along cut periodic
 // axes the particles sit at their images frame_[i] inside the region, and a pair's shift code adds
 // the difference of the two images.
-template <bool Framed>
+template <bool Framed, bool Wide>
 void CellGrid::search(const ParticleStore& p, const PeriodicBox& box, double skin, std::size_t begin, std::size_t end,
                       std::vector<std::uint32_t>& my_partners, std::vector<std::uint8_t>& my_codes,
                       std::vector<std::uint32_t>& my_counts) const {
@@ -96,24 +96,27 @@ void CellGrid::search(const ParticleStore& p, const PeriodicBox& box, double ski
     // Neighbour cell c + d along an axis: inside, or wrapped to an image s box lengths away.
     auto wrap = [&](int axis, int c, int& s) {
       s = 0;
-      if (c >= 0 && c < cells_[axis]) return c;
+      const int n = cells_[axis];
+      if (c >= 0 && c < n) return c;
       if (!wraps_[axis]) return -1;
-      s = static_cast<int>(std::floor(static_cast<double>(c) / cells_[axis]));
-      return c - s * cells_[axis];
+      if constexpr (Wide) s = c >= 0 ? c / n : -((n - 1 - c) / n);  // floor(c / n) in integers
+      else s = c < 0 ? -1 : 1;
+      return c - s * n;
     };
-    for (int dz = -reach_[2]; dz <= reach_[2]; ++dz) {
+    const int reach_x = Wide ? reach_[0] : 1, reach_y = Wide ? reach_[1] : 1, reach_z = Wide ? reach_[2] : 1;
+    for (int dz = -reach_z; dz <= reach_z; ++dz) {
       int sz = 0;
       const int cz = wrap(2, ci[2] + dz, sz);
       if (cz < 0) continue;
-      for (int dy = -reach_[1]; dy <= reach_[1]; ++dy) {
+      for (int dy = -reach_y; dy <= reach_y; ++dy) {
         int sy = 0;
         const int cy = wrap(1, ci[1] + dy, sy);
         if (cy < 0) continue;
         // Across a Lees–Edwards seam the row of cells stands offset along x: the four cells under
         // [x_i - offset - cell, x_i - offset + cell] hold every image within reach.
-        int first_x = ci[0] - reach_[0], last_x = ci[0] + reach_[0];
+        int first_x = ci[0] - reach_x, last_x = ci[0] + reach_x;
         double row_offset = 0.0;
-        if (sy != 0 && box.sheared()) {
+        if (Wide && sy != 0 && box.sheared()) {
           row_offset = sy * box.shear_offset;
           first_x = static_cast<int>(std::floor(ci[0] - row_offset * inv_size_[0])) - 1;
           last_x = first_x + 3;
@@ -128,7 +131,8 @@ void CellGrid::search(const ParticleStore& p, const PeriodicBox& box, double ski
           for (std::uint32_t k = start_[neighbor]; k < start_[neighbor + 1]; ++k) {
             const std::uint32_t j = order_[k];
             // Each pair once: a partner of higher id, or one's own image in the positive direction.
-            if ((j == i ? code <= PeriodicBox::kNoShift : p.id[j] <= idi) || !pair_interacts(p, i, j)) continue;
+            if (p.id[j] <= idi && (p.id[j] < idi || j != i || code <= PeriodicBox::kNoShift)) continue;
+            if (!pair_interacts(p, i, j)) continue;
             Vec3 xj = p.position[j] + shift;
             if constexpr (Framed)
               for (int a = 0; a < 3; ++a) xj[a] += frame_[j][a] * length[a];
@@ -156,6 +160,7 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
   threads = std::max(1, threads);
   std::vector<std::vector<std::uint32_t>> partners(threads), counts(threads);
   std::vector<std::vector<std::uint8_t>> codes(threads);
+  const bool wide = box.sheared() || reach_ != std::array<int, 3>{1, 1, 1};
 
   for_each_slice(threads, n, [&](int t, std::size_t begin, std::size_t end) {
     auto& my_partners = partners[t];
@@ -164,8 +169,11 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
     my_counts.assign(end - begin, 0);
     my_partners.reserve(expected_pairs / threads + expected_pairs / threads / 16);  // + 6 %: lists vary
     my_codes.reserve(my_partners.capacity());
-    if (frame_.empty()) search<false>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
-    else search<true>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
+    const bool framed = !frame_.empty();
+    if (framed && wide) search<true, true>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
+    else if (framed) search<true, false>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
+    else if (wide) search<false, true>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
+    else search<false, false>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
   });
 
   out.offsets.assign(n + 1, 0);

@@ -51,7 +51,10 @@ class CellGrid {
 
  private:
   int cell_of(const Vec3& x) const;
-  template <bool Framed>
+  // `Framed`: particles sit at their images inside a cut region (MPI). `Wide`: more than one
+  // neighbour cell each way along some axis, or Lees–Edwards rows; otherwise the 27 cells around
+  // each, with the loop bounds known to the compiler.
+  template <bool Framed, bool Wide>
   void search(const ParticleStore& p, const PeriodicBox& box, double skin, std::size_t begin, std::size_t end,
               std::vector<std::uint32_t>& partners, std::vector<std::uint8_t>& codes,
               std::vector<std::uint32_t>& counts) const;
