@@ -231,17 +231,27 @@ double DemEngine<Law, Rolling>::half_kick() {
   ParticleStore& p = s_.particles;
   const double half = 0.5 * s_.time_step;
   const std::size_t n = p.size();
-  return reduce_slices(threads_, n, 0.0, [&](int, std::size_t begin, std::size_t end, double& power) {
+  const Vec3 gravity = s_.gravity;
+  return reduce_slices(threads_, n, 0.0, [&](int, std::size_t begin, std::size_t end, double& sum) {
+    // Raw arrays and locals: the velocity stores would otherwise oblige the compiler to reload
+    // gravity and to store the running power on every particle.
+    const Motion* motion = p.motion.data();
+    const std::uint8_t* ghost = p.ghost.data();
+    const Vec3 *force = p.force.data(), *torque = p.torque.data();
+    const double *inv_mass = p.inv_mass.data(), *inv_inertia = p.inv_inertia.data(), *mass = p.mass.data();
+    Vec3 *velocity = p.velocity.data(), *angular_velocity = p.angular_velocity.data();
+    double power = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
-      if (p.motion[i] != Motion::free || p.ghost[i]) continue;
-      const Vec3 force = p.force[i], torque = p.torque[i];
-      const Vec3 v = p.velocity[i] + (half * p.inv_mass[i]) * force;
-      const Vec3 w = p.angular_velocity[i] + (half * p.inv_inertia[i]) * torque;
-      p.velocity[i] = v;
-      p.angular_velocity[i] = w;
+      if (motion[i] != Motion::free || ghost[i]) continue;
+      const Vec3 f = force[i], t = torque[i];
+      const Vec3 v = velocity[i] + (half * inv_mass[i]) * f;
+      const Vec3 w = angular_velocity[i] + (half * inv_inertia[i]) * t;
+      velocity[i] = v;
+      angular_velocity[i] = w;
       // particle_contact_power(i), written out here so that it inlines into the loop
-      if constexpr (Measure) power += dot(force - p.mass[i] * s_.gravity, v) + dot(torque, w);
+      if constexpr (Measure) power += dot(f - mass[i] * gravity, v) + dot(t, w);
     }
+    sum = power;
   });
 }
 
