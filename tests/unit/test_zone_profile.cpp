@@ -352,7 +352,9 @@ TEST(ZoneProfile, LeesEdwardsSeamZonesMatchTheInterior) {
     EXPECT_NEAR(zones[z].solids_fraction, zones[2].solids_fraction, 1e-13) << z;
     EXPECT_NEAR(zones[z].mean_velocity.x - rate * centres[z], offset, 1e-12) << z;
     // The half-thickness top zone holds half the spread of a whole zone: compare whole zones.
-    if (z < 5) EXPECT_NEAR(zones[z].temperature_lan.x, zones[2].temperature_lan.x, 1e-12) << z;
+    if (z < 5) {
+      EXPECT_NEAR(zones[z].temperature_lan.x, zones[2].temperature_lan.x, 1e-12) << z;
+    }
   }
   EXPECT_GT(zones[2].temperature_lan.x, 0.01);  // the spread of v_x over a zone is not zero
 }

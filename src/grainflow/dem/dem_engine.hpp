@@ -288,8 +288,12 @@ class DemEngine {
   template <bool Measure>
   double half_kick();
 
-  // W: the contact forces' (all but gravity) power on free particle i, torques included.
-  double particle_contact_power(std::size_t i) const;
+  // W: the contact forces' (all but gravity) power on a free particle of mass m under force f and
+  // torque t (gravity g included in f), moving at v and spinning at w. Inline: the half kick calls
+  // it per particle.
+  static double contact_power_of(const Vec3& f, const Vec3& t, double m, const Vec3& g, const Vec3& v, const Vec3& w) {
+    return dot(f - m * g, v) + dot(t, w);
+  }
   double contact_power() const;
 
   // J, what the touching contacts' springs hold now (each pair once, on the rank owning its list's

@@ -248,24 +248,18 @@ double DemEngine<Law, Rolling>::half_kick() {
       const Vec3 w = angular_velocity[i] + (half * inv_inertia[i]) * t;
       velocity[i] = v;
       angular_velocity[i] = w;
-      // particle_contact_power(i), written out here so that it inlines into the loop
-      if constexpr (Measure) power += dot(f - mass[i] * gravity, v) + dot(t, w);
+      if constexpr (Measure) power += contact_power_of(f, t, mass[i], gravity, v, w);
     }
     sum = power;
   });
 }
 
 template <class Law, bool Rolling>
-double DemEngine<Law, Rolling>::particle_contact_power(std::size_t i) const {
-  const ParticleStore& p = s_.particles;
-  return dot(p.force[i] - p.mass[i] * s_.gravity, p.velocity[i]) + dot(p.torque[i], p.angular_velocity[i]);
-}
-
-template <class Law, bool Rolling>
 double DemEngine<Law, Rolling>::contact_power() const {
+  const ParticleStore& p = s_.particles;
   double power = 0.0;
-  for (std::size_t i = 0; i < s_.particles.size(); ++i)
-    if (s_.particles.counted(i)) power += particle_contact_power(i);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.counted(i)) power += contact_power_of(p.force[i], p.torque[i], p.mass[i], s_.gravity, p.velocity[i], p.angular_velocity[i]);
   return power;
 }
 

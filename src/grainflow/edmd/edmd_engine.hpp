@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -107,9 +108,15 @@ class EdmdEngine {
   void advance_to(double t_end) { process_events<false>(t_end, 0); }
   // The same, but stops at the particle collision that brings the count to `collision_limit`
   // (a run's or a segment's budget, counted exactly as Campbell's listings did) and brings all
-  // particles to its time. True when it stopped there.
+  // particles to its time. True when it stopped there. kNoCollisionLimit: no limit, and no test
+  // per event.
+  static constexpr long long kNoCollisionLimit = std::numeric_limits<long long>::max();
   bool advance_to(double t_end, long long collision_limit) {
     if (counters_.collisions >= collision_limit) return true;
+    if (collision_limit == kNoCollisionLimit) {
+      process_events<false>(t_end, 0);
+      return false;
+    }
     process_events<true>(t_end, collision_limit);
     return counters_.collisions >= collision_limit;
   }

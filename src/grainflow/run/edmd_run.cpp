@@ -301,7 +301,7 @@ void EdmdRun::event_loop(E& e) {
 
 // The particle-collision count at which the run or the current Campbell segment ends.
 long long EdmdRun::collision_budget() const {
-  long long budget = std::numeric_limits<long long>::max();
+  long long budget = edmd::EdmdEngine<3>::kNoCollisionLimit;
   if (c.run.collisions > 0) budget = c.run.collisions;
   if (c.run.protocol == "campbell") budget = std::min(budget, segment_start_collisions + c.run.segment_collisions);
   return budget;
