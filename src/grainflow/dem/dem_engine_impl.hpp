@@ -159,8 +159,14 @@ void DemEngine<Law, Rolling>::step() {
   const std::size_t n = p.size();
   half_kick<false>();
   for_each_slice(threads_, n, [&](int, std::size_t begin, std::size_t end) {
+    // Raw arrays: through the store the compiler would reload every array's address per particle.
+    const Motion* motion = p.motion.data();
+    const std::uint8_t* ghost = p.ghost.data();
+    const Vec3* velocity = p.velocity.data();
+    Vec3* position = p.position.data();
+    const double step = dt;  // a copy: the captured reference would be reloaded after each store
     for (std::size_t i = begin; i < end; ++i)
-      if (p.motion[i] == Motion::free && !p.ghost[i]) p.position[i] += dt * p.velocity[i];
+      if (motion[i] == Motion::free && !ghost[i]) position[i] += step * velocity[i];
   });
   s_.time = (s_.step + 1) * dt;  // no accumulated round-off in the clock
   ++s_.step;
@@ -200,10 +206,15 @@ void DemEngine<Law, Rolling>::compute_forces(double history_dt) {
   ParticleStore& p = s_.particles;
   const std::size_t n = p.size();
   // Gravity, and zero for the non-moving.
+  const Vec3 gravity = s_.gravity;
   for_each_slice(threads_, n, [&](int, std::size_t begin, std::size_t end) {
+    const Motion* motion = p.motion.data();  // raw arrays, as in the drift
+    const double* mass = p.mass.data();
+    Vec3 *force = p.force.data(), *torque = p.torque.data();
+    const Vec3 g = gravity;
     for (std::size_t i = begin; i < end; ++i) {
-      p.force[i] = p.motion[i] == Motion::free ? p.mass[i] * s_.gravity : Vec3{};
-      p.torque[i] = Vec3{};
+      force[i] = motion[i] == Motion::free ? mass[i] * g : Vec3{};
+      torque[i] = Vec3{};
     }
   });
   energy_.wall_power = energy_.growth_power = energy_.seam_power = 0.0;
@@ -240,15 +251,17 @@ double DemEngine<Law, Rolling>::half_kick() {
     const Vec3 *force = p.force.data(), *torque = p.torque.data();
     const double *inv_mass = p.inv_mass.data(), *inv_inertia = p.inv_inertia.data(), *mass = p.mass.data();
     Vec3 *velocity = p.velocity.data(), *angular_velocity = p.angular_velocity.data();
+    const double h = half;  // copies inside the slice: the captured references would be reloaded
+    const Vec3 g = gravity;
     double power = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
       if (motion[i] != Motion::free || ghost[i]) continue;
       const Vec3 f = force[i], t = torque[i];
-      const Vec3 v = velocity[i] + (half * inv_mass[i]) * f;
-      const Vec3 w = angular_velocity[i] + (half * inv_inertia[i]) * t;
+      const Vec3 v = velocity[i] + (h * inv_mass[i]) * f;
+      const Vec3 w = angular_velocity[i] + (h * inv_inertia[i]) * t;
       velocity[i] = v;
       angular_velocity[i] = w;
-      if constexpr (Measure) power += contact_power_of(f, t, mass[i], gravity, v, w);
+      if constexpr (Measure) power += contact_power_of(f, t, mass[i], g, v, w);
     }
     sum = power;
   });
@@ -345,8 +358,11 @@ bool DemEngine<Law, Rolling>::needs_rebuild() const {
   const double limit = 0.25 * slack * slack;  // (slack / 2)^2
   const std::size_t n = p.size();
   const std::size_t moved = reduce_slices(threads_, n, std::size_t{0}, [&](int, std::size_t begin, std::size_t end, std::size_t& count) {
+    const Vec3 *position = p.position.data(), *at_build = position_at_build_.data();
+    std::size_t local = 0;  // in a register, not stored per particle through `count`
     for (std::size_t i = begin; i < end; ++i)
-      count += !(norm2(p.position[i] - position_at_build_[i]) <= limit);  // a NaN rebuilds, and is caught there
+      local += !(norm2(position[i] - at_build[i]) <= limit);  // a NaN rebuilds, and is caught there
+    count = local;
   });
   return moved != 0;
 }
@@ -460,7 +476,7 @@ void DemEngine<Law, Rolling>::pair_forces_with(double dt) {
     Vec3* torque = p.torque.data();
     Vec3* foreign_force = threads > 1 ? thread_force_[t].data() : force;
     Vec3* foreign_torque = threads > 1 ? thread_torque_[t].data() : torque;
-    std::vector<std::uint32_t>* touched = threads > 1 ? &thread_touched_[t] : nullptr;
+    std::vector<std::uint32_t>* touched = threads > 1 ? &thread_touched_[t].list : nullptr;
     for (std::size_t i = begin; i < end; ++i) {
       const Vec3 xi = p.position[i];
       const double ri = p.radius[i];
@@ -530,13 +546,13 @@ void DemEngine<Law, Rolling>::pair_forces_with(double dt) {
   });
   if (threads > 1) {  // the buffers' shares, each entry cleared after use (listed once per pair)
     for (int t = 0; t < threads; ++t) {
-      for (const std::uint32_t j : thread_touched_[t]) {
+      for (const std::uint32_t j : thread_touched_[t].list) {
         p.force[j] += thread_force_[t][j];
         p.torque[j] += thread_torque_[t][j];
         thread_force_[t][j] = Vec3{};
         thread_torque_[t][j] = Vec3{};
       }
-      thread_touched_[t].clear();
+      thread_touched_[t].list.clear();
     }
   }
   stats_.max_overlap_ratio = sums.max_ratio;

@@ -163,10 +163,10 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
   const bool wide = box.sheared() || reach_ != std::array<int, 3>{1, 1, 1};
 
   for_each_slice(threads, n, [&](int t, std::size_t begin, std::size_t end) {
-    auto& my_partners = partners[t];
-    auto& my_codes = codes[t];
-    auto& my_counts = counts[t];
-    my_counts.assign(end - begin, 0);
+    // The lists grow in this thread's own vectors, handed over at the end: the threads' vector
+    // objects in `partners` share a cache line, and every push_back stores its end there.
+    std::vector<std::uint32_t> my_partners, my_counts(end - begin, 0);
+    std::vector<std::uint8_t> my_codes;
     my_partners.reserve(expected_pairs / threads + expected_pairs / threads / 16);  // + 6 %: lists vary
     my_codes.reserve(my_partners.capacity());
     const bool framed = !frame_.empty();
@@ -174,6 +174,9 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
     else if (framed) search<true, false>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
     else if (wide) search<false, true>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
     else search<false, false>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
+    partners[t] = std::move(my_partners);
+    codes[t] = std::move(my_codes);
+    counts[t] = std::move(my_counts);
   });
 
   out.offsets.assign(n + 1, 0);
