@@ -163,7 +163,7 @@ class DemEngine {
         const Vec3 xj = p.position[j] + shifts[pairs_.shift[k]];
         const Vec3 d = p.position[i] - xj;
         const double r = norm(d);
-        if (!pair_in_contact(r * r, i, j, true) || r == 0.0) continue;
+        if (!pair_in_contact(r * r, i, j, p.radius[i], p.radius[j], true) || r == 0.0) continue;
         const ContactKinematics c = pair_kinematics(i, j, d, r, s_.box.image_velocity(pairs_.shift[k]));
         const int bump_face = std::max(p.wall[i], p.wall[j]);
         State memory = contacts_.pair_state[k];
@@ -200,11 +200,11 @@ class DemEngine {
   Vec3 unwrapped_position(std::size_t i) const { return s_.box.unwrapped(s_.particles.position[i], s_.particles.image[i]); }
 
  private:
-  // Whether a pair at squared distance r2 is in contact: overlapping, or (an adhesive law) touching
-  // before and not yet pulled apart past its neck.
-  bool pair_in_contact(double r2, std::size_t i, std::size_t j, bool touching) const {
+  // Whether a pair of radii ri, rj at squared distance r2 is in contact: overlapping, or (an adhesive
+  // law) touching before and not yet pulled apart past its neck.
+  bool pair_in_contact(double r2, std::size_t i, std::size_t j, double ri, double rj, bool touching) const {
     const ParticleStore& p = s_.particles;
-    const double ri = p.radius[i], rj = p.radius[j], sum = ri + rj;
+    const double sum = ri + rj;
     if constexpr (cohesive) {
       if (touching) {
         const int bump_face = std::max(p.wall[i], p.wall[j]);
@@ -255,13 +255,16 @@ class DemEngine {
 
   // The kinematics of the touching pair i, j: d = x_i - x_j (j's image nearest i), r = |d|; velocities
   // as they are now (half-step inside a step), j's image moving `image_velocity` faster than j.
+  // Without Sliding the image moves with its particle and `image_velocity` is not read: adding a
+  // zero vector is three additions the compiler may not drop (-0 + 0 is +0).
+  template <bool Sliding = true>
   ContactKinematics pair_kinematics(std::size_t i, std::size_t j, const Vec3& d, double r, const Vec3& image_velocity) const {
     const ParticleStore& p = s_.particles;
     const double ri = p.radius[i], rj = p.radius[j];
     ContactKinematics c;
     c.normal = d * (1.0 / r);
     c.overlap = ri + rj - r;
-    const Vec3 relative = p.velocity[i] - (p.velocity[j] + image_velocity);
+    const Vec3 relative = p.velocity[i] - (Sliding ? p.velocity[j] + image_velocity : p.velocity[j]);
     c.normal_velocity = dot(relative, c.normal);
     c.slip_velocity = relative - c.normal_velocity * c.normal -
                       cross(ri * p.angular_velocity[i] + rj * p.angular_velocity[j], c.normal);

@@ -477,28 +477,36 @@ void DemEngine<Law, Rolling>::pair_forces_with(double dt) {
     Vec3* foreign_force = threads > 1 ? thread_force_[t].data() : force;
     Vec3* foreign_torque = threads > 1 ? thread_torque_[t].data() : torque;
     std::vector<std::uint32_t>* touched = threads > 1 ? &thread_touched_[t].list : nullptr;
+    // The list's walk through raw arrays in locals: a store to a touching flag (a byte, which may
+    // alias anything) would otherwise reload every array's address for the next listed pair.
+    const Vec3* position = p.position.data();
+    const double* radius = p.radius.data();
+    const std::uint32_t *offsets = pairs_.offsets.data(), *partner = pairs_.partner.data();
+    const std::uint8_t* shift = pairs_.shift.data();
+    const Vec3* shift_vector = shifts.data();
+    std::uint8_t* touching = contacts_.pair_touching.data();
     for (std::size_t i = begin; i < end; ++i) {
-      const Vec3 xi = p.position[i];
-      const double ri = p.radius[i];
+      const Vec3 xi = position[i];
+      const double ri = radius[i];
       const long counted = !p.ghost[i];  // a pair is counted on the rank owning its list's particle
-      for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k) {
-        const std::uint32_t j = pairs_.partner[k];
-        const Vec3 d = xi - (p.position[j] + shifts[pairs_.shift[k]]);
-        const double rj = p.radius[j];
+      for (std::uint32_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+        const std::uint32_t j = partner[k];
+        const Vec3 d = xi - (position[j] + shift_vector[shift[k]]);
+        const double rj = radius[j];
         const double r2 = norm2(d);
-        if (!pair_in_contact(r2, i, j, contacts_.pair_touching[k])) {
-          contacts_.pair_touching[k] = 0;
+        if (!pair_in_contact(r2, i, j, ri, rj, touching[k])) {
+          touching[k] = 0;
           continue;
         }
-        if (!contacts_.pair_touching[k]) {
-          contacts_.pair_touching[k] = 1;
+        if (!touching[k]) {
+          touching[k] = 1;
           contacts_.pair_state[k] = State{};
           begun += counted;
         }
-        const std::uint8_t code = pairs_.shift[k];
+        const std::uint8_t code = shift[k];
         // A sliding row's image moves relative to its particle; in a still box no image does.
         const Vec3 image_velocity = Extras ? s_.box.image_velocity(code) : Vec3{};
-        const ContactKinematics c = pair_kinematics(i, j, d, std::sqrt(r2), image_velocity);
+        const ContactKinematics c = pair_kinematics<Extras>(i, j, d, std::sqrt(r2), image_velocity);
         int bump_face = -1;  // unless one is a wall bump
         if constexpr (Bumps) bump_face = std::max(p.wall[i], p.wall[j]);
         const Params& params = Bumps && bump_face >= 0 ? bump_params_[bump_face] : pair_params_;
