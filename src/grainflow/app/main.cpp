@@ -7,22 +7,16 @@
 #include <new>
 #include <unistd.h>
 
-#include "grainflow/run/trajectory_analysis.hpp"
-#include "grainflow/run/calibration_run.hpp"
-#include "grainflow/app/check_command.hpp"
-#include "grainflow/run/constitutive_table.hpp"
-#include "grainflow/run/dem_run.hpp"
-#include "grainflow/run/edmd_run.hpp"
-#include "grainflow/run/interrupt.hpp"
-#include "grainflow/run/run_support.hpp"
-#include "grainflow/io/checkpoint_file.hpp"
-#include "grainflow/parallel/communicator.hpp"
-#include "grainflow/run/run_records.hpp"
-#include "grainflow/run/sweep_run.hpp"
-#include "grainflow/run/theory_report.hpp"
-#include "grainflow/run/case_loader.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
+#include "grainflow/run/calibration_run.hpp"
+#include "grainflow/run/check_report.hpp"
+#include "grainflow/run/constitutive_table.hpp"
+#include "grainflow/run/process_start.hpp"
+#include "grainflow/run/run_command.hpp"
+#include "grainflow/run/sweep_run.hpp"
+#include "grainflow/run/theory_report.hpp"
+#include "grainflow/run/trajectory_analysis.hpp"
 
 namespace fs = std::filesystem;
 using namespace grainflow;
@@ -66,29 +60,26 @@ int plot(const std::string& directory) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  parallel::Communicator::start(argc, argv);  // MPI only when started by mpirun
+  run::start_process(argc, argv);  // MPI only when started by mpirun
   CLI::App app{"grainflow: particle simulation of granular flows (DEM and event-driven)"};
   app.set_version_flag("--version", std::string("grainflow ") + kVersion);
   app.require_subcommand(1);
 
-  std::string case_path, output_dir, plot_dir;
-  std::vector<std::string> overrides;
-  int threads = 1;
-  bool quiet = false;
+  std::string plot_dir;
+  run::RunCommand run_command;  // `check` shares the case and its --set overrides
 
   auto* run = app.add_subcommand("run", "run a case and write its output folder");
-  run->add_option("case", case_path, "case file (TOML)")->required();
-  run->add_option("-o,--output", output_dir, "output folder (default: runs/<case name>)");
-  run->add_option("--set", overrides, "override a case key: --set contact.k1=2e6")->type_name("KEY=VALUE");
-  run->add_option("--threads", threads, "OpenMP threads (default 1)")->check(CLI::Range(1, 1024));
-  run->add_flag("--quiet", quiet, "no progress line");
-  std::string restart_path;
-  run->add_option("--restart", restart_path,
+  run->add_option("case", run_command.case_path, "case file (TOML)")->required();
+  run->add_option("-o,--output", run_command.output_directory, "output folder (default: runs/<case name>)");
+  run->add_option("--set", run_command.overrides, "override a case key: --set contact.k1=2e6")->type_name("KEY=VALUE");
+  run->add_option("--threads", run_command.threads, "OpenMP threads (default 1)")->check(CLI::Range(1, 1024));
+  run->add_flag("--quiet", run_command.quiet, "no progress line");
+  run->add_option("--restart", run_command.restart,
                   "continue from a checkpoint.h5 of this case (outputs go to its folder unless -o is given)");
 
   auto* check = app.add_subcommand("check", "validate a case and print its derived quantities; runs nothing");
-  check->add_option("case", case_path, "case file (TOML)")->required();
-  check->add_option("--set", overrides, "override a case key")->type_name("KEY=VALUE");
+  check->add_option("case", run_command.case_path, "case file (TOML)")->required();
+  check->add_option("--set", run_command.overrides, "override a case key")->type_name("KEY=VALUE");
 
   auto* plot_cmd = app.add_subcommand("plot", "PNG figures of a run or sweep folder");
   plot_cmd->add_option("outdir", plot_dir, "output folder of a run")->required();
@@ -187,38 +178,8 @@ int main(int argc, char** argv) {
       if (*start_option) calibrate_options.start_k1 = calibrate_start_k1;
       return run::run_calibration(calibrate_options);
     }
-    if (app.got_subcommand("run") && !restart_path.empty()) {
-      // The checkpoint's own --set assignments first, so that a restart needs only the case and the
-      // file; assignments given now (a longer run.duration, say) come after and win.
-      const io::CheckpointHeader header = io::read_checkpoint_header(restart_path);
-      const CaseConfig as_given = load_case(case_path, overrides);
-      if (header.engine != as_given.engine.kind || header.dimension != as_given.engine.dimension)
-        throw InputError(restart_path, "",
-                         "this checkpoint cannot continue case '" + case_path + "': it is from a " +
-                             std::to_string(header.dimension) + "D '" + header.engine + "' run, the case is " +
-                             std::to_string(as_given.engine.dimension) + "D '" + as_given.engine.kind + "'");
-      std::vector<std::string> all = run::split_overrides(header.case_overrides);
-      all.insert(all.end(), overrides.begin(), overrides.end());
-      overrides = all;
-    }
-    const CaseConfig c = load_case(case_path, overrides);
-    if (app.got_subcommand("check")) {
-      app::print_check(c, std::cout);
-      return 0;
-    }
-    run::RunOptions options;
-    options.output_directory = output_dir.empty() ? (fs::path("runs") / fs::path(case_path).stem()).string() : output_dir;
-    if (output_dir.empty() && !restart_path.empty()) {
-      const fs::path folder = fs::path(restart_path).parent_path();
-      options.output_directory = folder.empty() ? "." : folder.string();
-    }
-    options.restart = restart_path;
-    run::catch_interrupts();
-    options.threads = threads;
-    options.quiet = quiet;
-    return run::run_with_records(c, options, std::vector<std::string>(argv, argv + argc), [&] {
-      return c.engine.kind == "edmd" ? run::run_edmd(c, options) : run::run_dem(c, options);
-    });
+    if (app.got_subcommand("check")) return run::check_case(run_command.case_path, run_command.overrides, std::cout);
+    return run::run_case(run_command, std::vector<std::string>(argv, argv + argc));
   } catch (const InputError& e) {
     std::cerr << "grainflow: invalid input: " << e.what() << "\n";
     return 2;
