@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Every #include between the layers of src/grainflow/ goes down the graph CMakeLists.txt declares
 (grainflow_layer(NAME DEPENDS ...)), header-only includes too, which a link would not catch; the
-graph has no cycle; and every folder under src/grainflow/ is a declared layer.
+graph has no cycle; and every folder under src/grainflow/ is a declared layer. Two rules hold beyond
+the graph, so that a new DEPENDS cannot quietly undo them: the engines reach none of the layers that
+bring HDF5 and FFTW (observe, io, analysis), and app/ includes only app/, run/ and core/ headers.
 
 Usage: /usr/bin/python3 tests/architecture/test_layers.py [REPOSITORY_ROOT]
 Exit status 0 when the layering holds, 1 with every violation listed.
@@ -24,6 +26,12 @@ def declared_layers(cmake_text):
                 deps.add(word)
         layers.setdefault(name, set()).update(deps)
     return layers
+
+
+# Layers an engine must not reach: the observers and the file and post-processing layers under them.
+ENGINE_FORBIDDEN = {"dem": {"observe", "io", "analysis"}, "edmd": {"observe", "io", "analysis"}}
+# The program's own folder hands every subcommand's work to run/; core/ gives it the errors and version.
+APP_INCLUDES = {"app", "run", "core"}
 
 
 def reachable(layers, start):
@@ -49,6 +57,11 @@ def main():
                 problems.append(f"layer {layer} depends on undeclared layer {dep}")
         if layer in reachable(layers, layer):
             problems.append(f"layer {layer} depends on itself through {sorted(layers[layer])}")
+    for engine, forbidden in ENGINE_FORBIDDEN.items():
+        if engine not in layers:
+            problems.append(f"engine layer {engine} is not declared in CMakeLists.txt")
+        for layer in sorted(reachable(layers, engine) & forbidden):
+            problems.append(f"engine layer {engine} depends on {layer}: an engine may not reach {sorted(forbidden)}")
     source_root = os.path.join(root, "src", "grainflow")
     include = re.compile(r'^\s*#\s*include\s+"grainflow/([a-z_]+)/([^"]+)"', re.MULTILINE)
     checked = 0
@@ -60,6 +73,8 @@ def main():
             problems.append(f"src/grainflow/{layer}/ is not a layer declared in CMakeLists.txt")
             continue
         allowed = reachable(layers, layer) | {layer}
+        if layer == "app":
+            allowed &= APP_INCLUDES
         for name in sorted(os.listdir(folder)):
             if not re.search(r"\.(hpp|cpp|in)$", name):
                 continue

@@ -24,9 +24,9 @@ constexpr double kRunScale = 1.0;
 constexpr double kRunScale = 0.1;
 #endif
 
-class AngleRecorder : public observe::CollisionObserver {
+class AngleRecorder : public engine_api::CollisionObserver {
  public:
-  void on_pair(const observe::PairCollision& c) override { angles.add(c.normal); }
+  void on_pair(const engine_api::PairCollision& c) override { angles.add(c.normal); }
   CollisionAngles angles;
 };
 

@@ -23,9 +23,9 @@
 
 using namespace grainflow;
 using namespace grainflow::edmd;
-using observe::CollisionObserver;
-using observe::PairCollision;
-using observe::WallCollision;
+using engine_api::CollisionObserver;
+using engine_api::PairCollision;
+using engine_api::WallCollision;
 using observe::StressProfile;
 using observe::StripGrid;
 using observe::StripStress;
@@ -387,7 +387,7 @@ TEST(CollisionStress, RollingDiscPressesWithItsWeight) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// What the engine reports (edmd/collision_observer.hpp), for collisions worked out by hand.
+// What the engine reports (engine_api/collision_observer.hpp), for collisions worked out by hand.
 
 namespace {
 

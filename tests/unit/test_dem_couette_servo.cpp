@@ -105,7 +105,7 @@ TEST(DemCouetteServo, MeasuresTheWallsImpulseAndSteersTheWallsByTheListingsRule)
   // ~5.6 J), and a little more goes into the kicks' damping and the spring: at most
   // m/2 sum dv^2 = m/2 (0.094^2 + 0.047^2 + ...) = 0.006 J, and m g delta / 2 = 5e-4 J. The budget
   // closes to the integrator's error.
-  const observe::EnergyBudget b = e.energy_budget();
+  const engine_api::EnergyBudget b = e.energy_budget();
   const double lift = e.state().particles.position[0].y - 0.5;
   const double v = e.state().particles.velocity[0].y;
   const double raised = kMass * kGravity * lift + 0.5 * kMass * v * v;

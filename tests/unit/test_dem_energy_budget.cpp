@@ -1,4 +1,4 @@
-// The soft-sphere engine's energy budget (observe/energy_budget.hpp): gravity's and the walls' work
+// The soft-sphere engine's energy budget (engine_api/energy_budget.hpp): gravity's and the walls' work
 // in, the change of kinetic + rotational + potential + elastic energy, and the dissipated energy,
 // which the contacts' springs and dashpots took from the particles' relative motion and did not
 // give back. Its value is checked against closed forms of binary impacts; the residual
@@ -42,8 +42,8 @@ collision_steps = 50
 }
 
 // `at_deepest`: the budget at the step of deepest overlap, where the pair stops approaching.
-observe::EnergyBudget run_binary(const std::string& contact, double& kinetic_loss,
-                                 observe::EnergyBudget* at_deepest = nullptr) {
+engine_api::EnergyBudget run_binary(const std::string& contact, double& kinetic_loss,
+                                 engine_api::EnergyBudget* at_deepest = nullptr) {
   const test::ParticleFile file("pair.csv", "glass,0.004,0.01,0.01,0.2,0,0\nglass,0.0065,0.01,0.01,-0.2,0,0\n");
   const CaseConfig c = load_case_from_string(binary_case(contact, file.path()), "binary.toml");
   auto engine = test::engine_for(c, 1);
@@ -51,7 +51,8 @@ observe::EnergyBudget run_binary(const std::string& contact, double& kinetic_los
       [&](auto& e) {
         auto kinetic = [&] {
           double k = 0.0;
-          for (std::size_t i = 0; i < e.state().particles.size(); ++i) k += observe::kinetic_energy(e.state().particles, i);
+          for (std::size_t i = 0; i < e.state().particles.size(); ++i)
+            k += engine_api::kinetic_energy(e.state().particles, i);
           return k;
         };
         const double before = kinetic();
@@ -99,7 +100,7 @@ TEST(DemEnergyBudget, LinearDashpotImpactDissipatesTheClosedFormLoss) {
 TEST(DemEnergyBudget, WaltonBraunImpactDissipatesOneMinusESquared) {
   const double e = 0.7, m_eff = 0.5 * kMass;
   double kinetic_loss = 0.0;
-  observe::EnergyBudget deepest;
+  engine_api::EnergyBudget deepest;
   const auto b = run_binary("model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.7\nfriction = 0.0", kinetic_loss,
                             &deepest);
   const double loss = 0.5 * m_eff * kApproach * kApproach * (1.0 - e * e);
@@ -148,7 +149,7 @@ duration = 0.4
 collision_steps = )" + std::to_string(collision_steps) + "\n";
 }
 
-observe::EnergyBudget run_bed(int collision_steps, const std::string& text = "") {
+engine_api::EnergyBudget run_bed(int collision_steps, const std::string& text = "") {
   const CaseConfig c = load_case_from_string(text.empty() ? shaken_bed(collision_steps) : text, "bed.toml");
   auto engine = test::engine_for(c, 1);
   return std::visit(
@@ -214,7 +215,7 @@ TEST(DemEnergyBudget, ClosesOnAShakenBumpyFloor) {
 // with spin bouncing on a shaken floor, its every work term present (gravity, the floor's, the
 // contact's and the springs'): the budget closes to round-off, measured below 1e-12 of the input
 // at 15 and 30 steps a contact. 1e-9 bounds that; the floor's work missing would leave all of it.
-observe::EnergyBudget bouncing_sphere(int collision_steps) {
+engine_api::EnergyBudget bouncing_sphere(int collision_steps) {
   const test::ParticleFile file("one.csv", "glass,0.005,0.004,0.005,0.05,0,0,0,0,40\n",
                                 "species,x,y,z,vx,vy,vz,wx,wy,wz");
   const std::string text = R"(

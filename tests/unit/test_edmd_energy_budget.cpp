@@ -1,4 +1,4 @@
-// The event-driven engine's energy budget (observe/energy_budget.hpp): the work of gravity along
+// The event-driven engine's energy budget (engine_api/energy_budget.hpp): the work of gravity along
 // the periodic axes, of moving walls (the servo's) and of sliding images (Lees-Edwards rows, a
 // Couette cell's width) equals the change of kinetic + rotational + potential energy plus what the
 // collisions dissipated. Between events every flight conserves energy exactly, and each event's
@@ -112,7 +112,7 @@ std::string sheared_gas(double restitution, const char* roughness) {
 }
 
 template <int Dim>
-observe::EnergyBudget run_budget(const CaseConfig& c, double until) {
+engine_api::EnergyBudget run_budget(const CaseConfig& c, double until) {
   edmd::EdmdEngine<Dim> e(edmd::build_edmd_state(c));
   e.advance_to(until);
   return e.energy_budget();

@@ -642,11 +642,13 @@ TEST(EdmdStall, ZenoBouncesStopTheRunWithAMessage) {
 // inelastic. Per wall collision the wall does work J . U on the particle (J its impulse), so over
 // a run  Delta KE = sum J . U - dissipated, to rounding; and each collision's dissipation, measured
 // in the frame where it is Galilean (the wall's, the pair's), is never negative.
-class WallWork : public observe::CollisionObserver {
+class WallWork : public engine_api::CollisionObserver {
  public:
   explicit WallWork(const EdmdState& s) : s_(s) {}
-  void on_pair(const observe::PairCollision& c) override { least_dissipated = std::min(least_dissipated, c.dissipated); }
-  void on_wall(const observe::WallCollision& c) override {
+  void on_pair(const engine_api::PairCollision& c) override {
+    least_dissipated = std::min(least_dissipated, c.dissipated);
+  }
+  void on_wall(const engine_api::WallCollision& c) override {
     work += dot(c.impulse, s_.walls[c.wall].velocity);
     least_dissipated = std::min(least_dissipated, c.dissipated);
     ++collisions;

@@ -41,7 +41,7 @@ struct TracerCase : test::ObserverFixture {
     particles.image[0] = {2, 0, -1};  // crossed +x twice and -z once
     add_wall(2, 0.0005, {0.0, 0.1, 0.0});
     frame.coordination = [this] {
-      std::vector<observe::Coordination> touch(particles.size());
+      std::vector<engine_api::Coordination> touch(particles.size());
       touch[0] = {4, 1};
       touch[2] = {6, 0};
       return touch;

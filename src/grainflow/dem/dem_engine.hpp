@@ -23,8 +23,8 @@
 #include "grainflow/dem/neighbor_list.hpp"
 #include "grainflow/dem/portable_state.hpp"
 #include "grainflow/dem/rolling_resistance.hpp"
-#include "grainflow/observe/coordination.hpp"
-#include "grainflow/observe/energy_budget.hpp"
+#include "grainflow/engine_api/coordination.hpp"
+#include "grainflow/engine_api/energy_budget.hpp"
 
 namespace grainflow::dem {
 
@@ -38,7 +38,7 @@ struct ContactStatistics {
   long wall_collisions = 0;  // particle-wall contacts begun since the start
 };
 
-// The running sums of the energy budget (observe/energy_budget.hpp), this rank's share. Powers are
+// The running sums of the energy budget (engine_api/energy_budget.hpp), this rank's share. Powers are
 // those of the last force evaluation; works integrate them over the steps by the trapezoidal rule.
 struct EnergyTally {
   double contact_work = 0.0;  // J, all contact forces' work on the free particles (walls' and bumps' included)
@@ -86,7 +86,7 @@ class DemEngine {
   // energy is what the contact forces took from the particles' relative motion, plus what radius
   // growth put in, less what the springs hold now. The residual is then the integrator's: velocity
   // Verlet against the trapezoidal rule for the forces' work, -dt/4 (v1 - v0).(F1 - F0) a step.
-  observe::EnergyBudget energy_budget() const;
+  engine_api::EnergyBudget energy_budget() const;
   const EnergyTally& energy_tally() const { return energy_; }
 
   DemState& state() { return s_; }
@@ -142,7 +142,7 @@ class DemEngine {
 
   // Particles and walls each particle touches now (coordination numbers, Lan 1994 Fig. A5.17), by
   // index: one pass over the pair list, however many particles are asked about.
-  using Coordination = observe::Coordination;
+  using Coordination = engine_api::Coordination;
   std::vector<Coordination> coordination() const;
 
   // Each touching contact's force now, once: visit(i, wall, from, force) with the force on particle

@@ -76,19 +76,19 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
   }
   energy_.contact_power = contact_power();
   energy_.start_elastic = elastic_energy();
-  energy_.start_energy = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) + energy_.start_elastic;
-  energy_.start_periodic_potential = observe::periodic_potential(s_.particles, s_.box, s_.gravity);
+  energy_.start_energy = engine_api::mechanical_energy(s_.particles, s_.box, s_.gravity) + energy_.start_elastic;
+  energy_.start_periodic_potential = engine_api::periodic_potential(s_.particles, s_.box, s_.gravity);
 }
 
 template <class Law, bool Rolling>
-observe::EnergyBudget DemEngine<Law, Rolling>::energy_budget() const {
-  observe::EnergyBudget b;
+engine_api::EnergyBudget DemEngine<Law, Rolling>::energy_budget() const {
+  engine_api::EnergyBudget b;
   const double elastic = elastic_energy();
-  b.gravity_work = energy_.start_periodic_potential - observe::periodic_potential(s_.particles, s_.box, s_.gravity);
+  b.gravity_work = energy_.start_periodic_potential - engine_api::periodic_potential(s_.particles, s_.box, s_.gravity);
   b.wall_work = energy_.wall_work;
   b.boundary_work = energy_.seam_contact_work + energy_.seam_crossing_work;
   b.growth_work = energy_.growth_work;
-  b.change = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) + elastic - energy_.start_energy;
+  b.change = engine_api::mechanical_energy(s_.particles, s_.box, s_.gravity) + elastic - energy_.start_energy;
   // on the contacts' relative motion
   const double relative_work = energy_.contact_work - energy_.wall_work - energy_.seam_contact_work;
   b.dissipated = energy_.growth_work - relative_work - (elastic - energy_.start_elastic);
@@ -223,7 +223,7 @@ void DemEngine<Law, Rolling>::compute_forces(double history_dt) {
 }
 
 template <class Law, bool Rolling>
-std::vector<observe::Coordination> DemEngine<Law, Rolling>::coordination() const {
+std::vector<engine_api::Coordination> DemEngine<Law, Rolling>::coordination() const {
   std::vector<Coordination> c(s_.particles.size());
   for (std::size_t a = 0; a + 1 < pairs_.offsets.size(); ++a)
     for (std::uint32_t k = pairs_.offsets[a]; k < pairs_.offsets[a + 1]; ++k)

@@ -1,4 +1,4 @@
-// What the event-driven engine tells a collision observer (observe/collision_observer.hpp) about a
+// What the event-driven engine tells a collision observer (engine_api/collision_observer.hpp) about a
 // collision it has just resolved. The engine keeps no copy of the state before, so that resolving
 // stays as lean as without an observer: what the collision left unchanged (positions, hence
 // separation, normal and image frame) is taken as it is, and the velocities before are recovered
@@ -10,7 +10,7 @@
 #include "grainflow/core/vec3.hpp"
 #include "grainflow/edmd/collision_rules.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
-#include "grainflow/observe/collision_observer.hpp"
+#include "grainflow/engine_api/collision_observer.hpp"
 
 namespace grainflow::edmd {
 
@@ -26,11 +26,11 @@ struct Collided {
 
 // i and the image of j it met, separated by dr = x_i - x_j, after receiving J and -J:
 // v_i' = v_i + J/m_i and v_j' = v_j - J/m_j give the relative velocity before.
-inline observe::PairCollision pair_collision_report(double time, std::uint32_t i, std::uint32_t j, const Collided& a,
+inline engine_api::PairCollision pair_collision_report(double time, std::uint32_t i, std::uint32_t j, const Collided& a,
                                                     const Collided& b, const Vec3& dr, const Vec3& impulse,
                                                     double dissipated) {
   const Vec3 normal = dr * (1.0 / norm(dr));
-  observe::PairCollision c;
+  engine_api::PairCollision c;
   c.time = time;
   c.i = i;
   c.j = j;
@@ -47,13 +47,13 @@ inline observe::PairCollision pair_collision_report(double time, std::uint32_t i
 // Particle i after its collision with wall w under `condition` (the wall's own, or smooth for a TC
 // collision): v' = v + J/m, and on a rough wall omega' = omega - (R/I) n x J; smooth and no-slip
 // collisions leave the spin.
-inline observe::WallCollision wall_collision_report(double time, std::uint32_t i, int w, const EdmdWall& wall,
+inline engine_api::WallCollision wall_collision_report(double time, std::uint32_t i, int w, const EdmdWall& wall,
                                                     const Collided& a, const Vec3& normal, const Vec3& impulse,
                                                     WallCondition condition, double dissipated) {
   Vec3 spin = a.angular_velocity;
   if (condition == WallCondition::rough) spin += (a.radius * a.inv_inertia) * cross(normal, impulse);
   const Vec3 relative = a.velocity - a.inv_mass * impulse - wall.velocity;
-  observe::WallCollision c;
+  engine_api::WallCollision c;
   c.time = time;
   c.i = i;
   c.wall = w;

@@ -25,8 +25,8 @@ EdmdEngine<Dim>::EdmdEngine(EdmdState state, bool neighbor_lists) : s_(std::move
   if (use_lists_) lists_.build(s_.box, grid_, flight_, s_.particles.radius);
   for (std::size_t i = 0; i < n; ++i) predict(static_cast<std::uint32_t>(i));
   queue_.reset(n, &event_time_);
-  counters_.start_energy = observe::mechanical_energy(p, s_.box, s_.gravity);
-  counters_.start_periodic_potential = observe::periodic_potential(p, s_.box, s_.gravity);
+  counters_.start_energy = engine_api::mechanical_energy(p, s_.box, s_.gravity);
+  counters_.start_periodic_potential = engine_api::periodic_potential(p, s_.box, s_.gravity);
 }
 
 template <int Dim>

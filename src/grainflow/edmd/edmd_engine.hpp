@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "grainflow/core/error.hpp"
-#include "grainflow/observe/collision_observer.hpp"
+#include "grainflow/engine_api/collision_observer.hpp"
 #include "grainflow/edmd/cell_grid.hpp"
 #include "grainflow/edmd/collision_reports.hpp"
 #include "grainflow/edmd/collision_rules.hpp"
@@ -31,7 +31,7 @@
 #include "grainflow/edmd/flight.hpp"
 #include "grainflow/edmd/free_flight.hpp"
 #include "grainflow/edmd/lees_edwards.hpp"
-#include "grainflow/observe/energy_budget.hpp"
+#include "grainflow/engine_api/energy_budget.hpp"
 #include "grainflow/edmd/neighbor_lists.hpp"
 #include "grainflow/edmd/rolling.hpp"
 #include "grainflow/edmd/stall_detector.hpp"
@@ -51,17 +51,17 @@ class EdmdEngine {
   // `neighbor_lists` = false keeps the cell search where the list path would apply (for tests).
   explicit EdmdEngine(EdmdState state, bool neighbor_lists = true);
 
-  // The energy budget since the start (observe/energy_budget.hpp). Particles must be current (after
+  // The energy budget since the start (engine_api/energy_budget.hpp). Particles must be current (after
   // advance_to). Collisions' losses are measured in the frame of the wall or image met, so the
   // walls' and images' work is the lab-frame energy change beyond that loss: W . J per collision.
-  observe::EnergyBudget energy_budget() const {
-    observe::EnergyBudget b;
-    b.gravity_work = counters_.start_periodic_potential - observe::periodic_potential(s_.particles, s_.box, s_.gravity) +
-                     counters_.gravity_shift_work;
+  engine_api::EnergyBudget energy_budget() const {
+    engine_api::EnergyBudget b;
+    b.gravity_work = counters_.start_periodic_potential -
+                     engine_api::periodic_potential(s_.particles, s_.box, s_.gravity) + counters_.gravity_shift_work;
     b.wall_work = counters_.wall_work;
     b.boundary_work = counters_.boundary_work;
     b.separation_work = counters_.separation_work;
-    b.change = observe::mechanical_energy(s_.particles, s_.box, s_.gravity) - counters_.start_energy;
+    b.change = engine_api::mechanical_energy(s_.particles, s_.box, s_.gravity) - counters_.start_energy;
     b.dissipated = counters_.dissipated;
     return b;
   }
@@ -88,7 +88,7 @@ class EdmdEngine {
   const ServoState& servo() const { return servo_.state(); }
 
   // Reports every later collision to `observer` (nullptr: none). The engine does not own it.
-  void set_observer(observe::CollisionObserver* observer) { observer_ = observer; }
+  void set_observer(engine_api::CollisionObserver* observer) { observer_ = observer; }
 
   // Calls visit(i, wall, force) for each particle rolling on a wall now (section 2.14.2), with the
   // force the wall exerts on it, m (a - g): the normal part of its weight and, on rough and no-slip
@@ -616,9 +616,9 @@ class EdmdEngine {
     if (cell != grid_.cell(static_cast<int>(i))) grid_.move(flight_, static_cast<int>(i), cell);
   }
 
-  // Its kinetic energy and potential along the bounded axes (observe/energy_budget.hpp).
+  // Its kinetic energy and potential along the bounded axes (engine_api/energy_budget.hpp).
   double particle_energy(std::uint32_t i) const {
-    return kinetic_energy(i) + observe::bounded_potential(s_.box, s_.gravity, s_.particles.mass[i], flight_[i].x);
+    return kinetic_energy(i) + engine_api::bounded_potential(s_.box, s_.gravity, s_.particles.mass[i], flight_[i].x);
   }
 
   EdmdState s_;
@@ -637,7 +637,7 @@ class EdmdEngine {
   std::vector<double> event_time_;
   EventQueue queue_;
   EventCounters counters_;
-  observe::CollisionObserver* observer_ = nullptr;
+  engine_api::CollisionObserver* observer_ = nullptr;
 };
 
 }  // namespace grainflow::edmd

@@ -15,7 +15,7 @@ struct EventCounters {
   long long rolling_starts = 0;  // wall rebounds too slow to bounce: the particle rolls
   double virial = 0.0;           // sum over collisions of r_ij . J_i (kg m^2/s), for the pressure
   double dissipated = 0.0;       // J lost in collisions (and in the last impact of a particle starting to roll)
-  // The energy budget (observe/energy_budget.hpp): work done on the particles by moving walls and
+  // The energy budget (engine_api/energy_budget.hpp): work done on the particles by moving walls and
   // by images that move (Lees-Edwards rows, a Couette cell's width), J since the start; gravity's
   // work along x carried by Lees-Edwards shifts (the unwrapped x jumps by the row offset); and the
   // energies at the start the changes are measured from.

@@ -89,7 +89,7 @@ void StressProfile::add_segment(const StripGrid& grid, const Vec3& from, const V
                  [&](int k, double fraction) { add_outer(interval_[k].collisional, fraction * per_measure, branch, impulse); });
 }
 
-void StressProfile::add(const StripGrid& grid, const observe::PairCollision& c) {
+void StressProfile::add(const StripGrid& grid, const engine_api::PairCollision& c) {
   if (!started_) return;
   add_segment(grid, c.xj, c.xi, c.impulse);
   if (const int k = strip_of(grid, c.contact[grid.axis()]); k >= 0) {
@@ -100,7 +100,7 @@ void StressProfile::add(const StripGrid& grid, const observe::PairCollision& c) 
   }
 }
 
-void StressProfile::add(const StripGrid& grid, const observe::WallCollision& c) {
+void StressProfile::add(const StripGrid& grid, const engine_api::WallCollision& c) {
   if (!started_) return;
   add_segment(grid, c.contact, c.x, c.impulse);
 }

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "grainflow/core/vec3.hpp"
-#include "grainflow/observe/collision_observer.hpp"
+#include "grainflow/engine_api/collision_observer.hpp"
 #include "grainflow/observe/rank_reduce.hpp"
 #include "grainflow/observe/block_sums.hpp"
 #include "grainflow/analysis/strip_grid.hpp"
@@ -60,9 +60,9 @@ class StressProfile {
   // strips' sums are added over the ranks at each sample, so that every rank holds the whole.
   void begin(const StripGrid& grid, const ParticleStore& p, double time, const RankReduce& ranks = {});
   // A particle pair collision; `grid` as it is at the collision's time.
-  void add(const StripGrid& grid, const observe::PairCollision& c);
+  void add(const StripGrid& grid, const engine_api::PairCollision& c);
   // A wall collision: the impulse runs from the contact point to the centre.
-  void add(const StripGrid& grid, const observe::WallCollision& c);
+  void add(const StripGrid& grid, const engine_api::WallCollision& c);
   // A force acting through the interval from `contact` to `centre` (a particle rolling on a wall).
   void add_contact_force(const StripGrid& grid, const Vec3& centre, const Vec3& contact, const Vec3& force,
                          double duration);

@@ -24,12 +24,12 @@ double CollisionStressObserver::wall_area(int wall) const {
   return observe::wall_area(*frame_->box, frame_->walls[static_cast<std::size_t>(wall)].axis, dim_);
 }
 
-void CollisionStressObserver::on_pair(const PairCollision& c) {
+void CollisionStressObserver::on_pair(const engine_api::PairCollision& c) {
   stress_.add(strips_.grid_at(*frame_, c.time), c);
   angles_.add(c.normal);
 }
 
-void CollisionStressObserver::on_wall(const WallCollision& c) {
+void CollisionStressObserver::on_wall(const engine_api::WallCollision& c) {
   stress_.add(strips_.grid_at(*frame_, c.time), c);
   walls_.add(c, wall_area(c.wall));
 }

@@ -10,7 +10,7 @@
 
 #include "grainflow/config/case_config.hpp"
 #include "grainflow/observe/collision_angles.hpp"
-#include "grainflow/observe/collision_observer.hpp"
+#include "grainflow/engine_api/collision_observer.hpp"
 #include "grainflow/observe/collision_stress.hpp"
 #include "grainflow/observe/observer.hpp"
 #include "grainflow/observe/run_context.hpp"
@@ -19,7 +19,7 @@
 
 namespace grainflow::observe {
 
-class CollisionStressObserver final : public Observer, public CollisionObserver {
+class CollisionStressObserver final : public Observer, public engine_api::CollisionObserver {
  public:
   CollisionStressObserver(const RunContext& run, const Frame& start);
 
@@ -32,8 +32,8 @@ class CollisionStressObserver final : public Observer, public CollisionObserver 
 
   void serialize(io::StateArchive& ar) override { ar(stress_, walls_, angles_, started_, last_, next_); }
 
-  void on_pair(const PairCollision& c) override;
-  void on_wall(const WallCollision& c) override;
+  void on_pair(const engine_api::PairCollision& c) override;
+  void on_wall(const engine_api::WallCollision& c) override;
 
   // Closes a last, shorter interval if the run stopped between samples, then writes.
   void write(const Frame& last, OutputSink& out) override;

@@ -19,8 +19,8 @@
 #include "grainflow/core/periodic_box.hpp"
 #include "grainflow/io/json_writer.hpp"
 #include "grainflow/io/state_archive.hpp"
-#include "grainflow/observe/collision_observer.hpp"
-#include "grainflow/observe/coordination.hpp"
+#include "grainflow/engine_api/collision_observer.hpp"
+#include "grainflow/engine_api/coordination.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
 namespace grainflow::observe {
@@ -47,7 +47,7 @@ struct Frame {
   const PeriodicBox* box = nullptr;
   FaceWalls walls;
   // Per particle of `particles`, what it touches now (soft spheres; a pass over the contacts).
-  std::function<std::vector<Coordination>()> coordination;
+  std::function<std::vector<engine_api::Coordination>()> coordination;
   // Calls visit(i, wall, force) for each particle pressing on a wall between collisions (an
   // event-driven particle rolling on it), with the force the wall exerts.
   using WallContactVisit = std::function<void(std::uint32_t, int, const Vec3&)>;
@@ -85,7 +85,7 @@ class Observer {
     return false;
   }
   // Non-null while it wants every collision reported (the event-driven engine calls it).
-  virtual CollisionObserver* collision_observer() { return nullptr; }
+  virtual engine_api::CollisionObserver* collision_observer() { return nullptr; }
 
   // Checkpoints: the state it accumulated; the case rebuilds the rest.
   virtual void serialize(io::StateArchive& ar) = 0;

@@ -14,7 +14,7 @@ WallLoads::Sums& WallLoads::Sums::operator+=(const Sums& o) {
   return *this;
 }
 
-void WallLoads::add(const observe::WallCollision& c, double area) {
+void WallLoads::add(const engine_api::WallCollision& c, double area) {
   Sums& s = interval_[c.wall];
   s.impulse += c.impulse * (1.0 / area);
   s.collisions += 1.0 / area;

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "grainflow/core/vec3.hpp"
-#include "grainflow/observe/collision_observer.hpp"
+#include "grainflow/engine_api/collision_observer.hpp"
 #include "grainflow/observe/block_sums.hpp"
 #include "grainflow/observe/rank_reduce.hpp"
 
@@ -45,7 +45,7 @@ class WallLoads {
   }
 
   // `area`: the wall's current area (2D: length), m^(D-1).
-  void add(const observe::WallCollision& c, double area);
+  void add(const engine_api::WallCollision& c, double area);
   // A rolling particle's push, `force` on the particle, through `duration`.
   void add_rolling(int wall, const Vec3& force, double duration, double area);
   // Ends a sample interval; on several MPI ranks (`ranks`) its sums are first added over them.

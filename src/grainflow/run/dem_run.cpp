@@ -43,7 +43,7 @@ struct TimeseriesRow {
   observe::BedSurface bed;
   double zone_temperature;         // eq. (3-1-9)'s zone temperatures, about each zone's instantaneous mean, over the bed
   long collisions, wall_collisions;  // contacts begun since the start
-  observe::EnergyBudget budget;      // since the start, over all ranks
+  engine_api::EnergyBudget budget;      // since the start, over all ranks
   double budget_residual;
   CouetteServoState servo;           // the Couette servo's gap and last update, when it runs
 };
@@ -138,7 +138,7 @@ class DemRun {
   template <class E> void bind_frame(E& e);
   template <class E> const observe::Frame& frame_now(E& e);
   template <class E> void write_outputs(E& e);
-  template <class E> std::pair<observe::EnergyBudget, double> global_energy_budget(const E& e) const;
+  template <class E> std::pair<engine_api::EnergyBudget, double> global_energy_budget(const E& e) const;
   template <class E> void write_summary(E& e, long long moving, const observe::GlobalSample& global,
                                         long long migrations, long long ghosts);
   void snapshot(const dem::DemState& st);
@@ -185,7 +185,7 @@ class DemRun {
   std::chrono::steady_clock::time_point wall_start, last_flush;
   double wall_seconds = 0.0;  // to the end of the loop, before the outputs are written
   double max_overlap_seen = 0.0;
-  observe::EnergyBudget final_budget;  // at the end, over all ranks
+  engine_api::EnergyBudget final_budget;  // at the end, over all ranks
   double final_budget_scale = 0.0;  // J, the starting energy (the residual's fallback scale)
   int exit_status = 0;
   long first_step = 0;  // steps before this process's (a restart's checkpoint)
@@ -483,8 +483,8 @@ int DemRun::run() {
 
 // The ranks' shares of the energy budget summed (collective), and the starting energy.
 template <class E>
-std::pair<observe::EnergyBudget, double> DemRun::global_energy_budget(const E& e) const {
-  observe::EnergyBudget b = e.energy_budget();
+std::pair<engine_api::EnergyBudget, double> DemRun::global_energy_budget(const E& e) const {
+  engine_api::EnergyBudget b = e.energy_budget();
   double* parts[] = {&b.gravity_work, &b.wall_work, &b.boundary_work, &b.growth_work, &b.separation_work, &b.change,
                      &b.dissipated};
   double sums[std::size(parts) + 1];

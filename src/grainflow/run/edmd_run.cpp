@@ -37,7 +37,7 @@ struct Row {
   long long collisions, wall_collisions, events;
   double pressure;      // over the interval ending at `time`: kinetic (instantaneous) + collisional
   double dissipated;    // J since the start
-  observe::EnergyBudget budget;
+  engine_api::EnergyBudget budget;
   double budget_residual;
   edmd::ServoState servo;
 };
@@ -163,7 +163,7 @@ const observe::Frame& EdmdRun::frame_now(E& e) {
 // The engine reports every collision to the observer that asks for them now (at most one does).
 template <class E>
 void EdmdRun::listen_to_collisions(E& e) {
-  observe::CollisionObserver* listener = nullptr;
+  engine_api::CollisionObserver* listener = nullptr;
   for (auto& o : observers)
     if (auto* l = o->collision_observer()) listener = l;
   e.set_observer(listener);

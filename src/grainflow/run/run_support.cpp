@@ -82,7 +82,7 @@ std::vector<std::string> split_overrides(const std::string& joined) {
   return out;
 }
 
-void write_energy_budget(const observe::EnergyBudget& b, double fallback_scale, io::JsonObject& summary) {
+void write_energy_budget(const engine_api::EnergyBudget& b, double fallback_scale, io::JsonObject& summary) {
   summary.number("energy_input", b.input());
   summary.number("energy_input_gravity", b.gravity_work);
   summary.number("energy_input_walls", b.wall_work);

@@ -10,7 +10,7 @@
 
 #include "grainflow/config/case_config.hpp"
 #include "grainflow/io/json_writer.hpp"
-#include "grainflow/observe/energy_budget.hpp"
+#include "grainflow/engine_api/energy_budget.hpp"
 #include "grainflow/observe/step_schedule.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
@@ -52,7 +52,7 @@ int finish_summary(io::JsonObject& summary, const std::string& dir, const std::v
 // summary.json's energy budget: energy_input (and its parts energy_input_gravity, _walls,
 // _boundaries, _growth, _separation), energy_change, energy_dissipated, energy_budget_residual;
 // `fallback_scale` as for EnergyBudget::residual.
-void write_energy_budget(const observe::EnergyBudget& b, double fallback_scale, io::JsonObject& summary);
+void write_energy_budget(const engine_api::EnergyBudget& b, double fallback_scale, io::JsonObject& summary);
 
 // final_state.csv: every particle by id, with exact doubles so the state can start another run.
 void write_final_state(const std::string& path, const ParticleStore& p, const std::vector<SpeciesConfig>& species);

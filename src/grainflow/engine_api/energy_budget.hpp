@@ -15,7 +15,7 @@
 #include "grainflow/core/vec3.hpp"
 #include "grainflow/particles/particle_store.hpp"
 
-namespace grainflow::observe {
+namespace grainflow::engine_api {
 
 struct EnergyBudget {
   double gravity_work = 0.0;   // J, along the periodic axes
@@ -71,4 +71,4 @@ inline double periodic_potential(const ParticleStore& p, const PeriodicBox& box,
   return u;
 }
 
-}  // namespace grainflow::observe
+}  // namespace grainflow::engine_api

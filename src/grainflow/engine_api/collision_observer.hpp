@@ -11,7 +11,7 @@
 
 #include "grainflow/core/vec3.hpp"
 
-namespace grainflow::observe {
+namespace grainflow::engine_api {
 
 struct PairCollision {
   double time = 0.0;               // s
@@ -43,4 +43,4 @@ class CollisionObserver {
   virtual void on_wall(const WallCollision&) {}
 };
 
-}  // namespace grainflow::observe
+}  // namespace grainflow::engine_api

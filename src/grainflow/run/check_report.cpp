@@ -1,11 +1,12 @@
-#include "grainflow/app/check_command.hpp"
+#include "grainflow/run/check_report.hpp"
 
 #include <cmath>
 #include <fmt/format.h>
 
 #include "grainflow/dem/derived_quantities.hpp"
+#include "grainflow/run/case_loader.hpp"
 
-namespace grainflow::app {
+namespace grainflow::run {
 
 namespace {
 
@@ -115,4 +116,9 @@ void print_check(const CaseConfig& c, std::ostream& out) {
   out << fmt::format("  mass hold-up m_t            {:.6g}  (eq. 4-1-3)\n", d.mass_holdup);
 }
 
-}  // namespace grainflow::app
+int check_case(const std::string& case_path, const std::vector<std::string>& overrides, std::ostream& out) {
+  print_check(load_case(case_path, overrides), out);
+  return 0;
+}
+
+}  // namespace grainflow::run
