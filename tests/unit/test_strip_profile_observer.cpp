@@ -51,6 +51,32 @@ TEST(StripProfileObserver, SavageJeffreySOfEachStripAndTheirMean) {
   }
 }
 
+// A run reads when the long-term averages began through the Observer interface, not the concrete
+// type: NaN before the first sample, then its time; an observer that keeps no averages says NaN.
+TEST(StripProfileObserver, TellsARunThroughTheObserverInterfaceWhenItsAveragesBegan) {
+  test::ObserverFixture f;
+  f.c.output.average_start = 0.05;
+  f.c.output.interval = 1.0;
+  f.box.periodic = {true, false, true};
+  f.add_wall(2, 0.0);
+  f.add_wall(3, 0.01);
+  f.add(0, {0.002, 0.005, 0.005}, {0.1, 0.0, 0.0});
+  const observe::RunContext run = f.context(0.0);
+  observe::StripProfileObserver profiles(run, f.at(0.0));
+  const observe::Observer& seen = profiles;
+  EXPECT_TRUE(std::isnan(seen.first_sample_time()));
+  profiles.sample(f.at(0.1));
+  profiles.sample(f.at(0.2));
+  EXPECT_EQ(seen.first_sample_time(), 0.1);
+
+  struct NoAverages final : observe::Observer {
+    std::string name() const override { return "none"; }
+    void sample(const observe::Frame&) override {}
+    void serialize(io::StateArchive&) override {}
+  } none;
+  EXPECT_TRUE(std::isnan(static_cast<const observe::Observer&>(none).first_sample_time()));
+}
+
 // Unbounded simple shear (Lees-Edwards, periodic along y): rows of spheres every quarter diameter
 // move exactly on the imposed profile u = shear (y - H/2). The arrangement repeats every strip, so
 // every strip, the two at the seam included, must have the same spread of u (the profile's own

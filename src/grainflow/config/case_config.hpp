@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "grainflow/config/contact_parameters.hpp"
+#include "grainflow/config/observer_tables.hpp"
 #include "grainflow/core/vec3.hpp"
 
 namespace grainflow {
@@ -215,16 +216,6 @@ struct TrajectoryConfig {
   std::vector<std::uint32_t> particles;  // ids to follow; empty: every free particle
 };
 
-// [zone_series]: histories of each zone's instantaneous mean velocity and of the floor, sampled at
-// their own interval, for spectra and floor cross-correlations (Lan 1994 section 4.3); zone_series.h5.
-struct ZoneSeriesConfig {
-  bool operator==(const ZoneSeriesConfig&) const = default;  // the case writer's round-trip test
-  bool enabled = false;
-  double start = -1.0;      // s; < 0: output.average_start
-  double interval = 0.0;    // s; 0: 1 / (20 f), f the drive frequency along the gravity axis
-  long long samples = 2048;
-};
-
 // [coarse_grain]: density, solid fraction, velocity, kinetic and contact stress on a 3D grid of
 // cells over the box, by MercuryCG's method (observe/coarse_grain_field.hpp), time-averaged;
 // coarse_grained.vti.
@@ -275,7 +266,7 @@ struct CaseConfig {
   RunConfig run;
   OutputConfig output;
   TrajectoryConfig trajectory;
-  ZoneSeriesConfig zone_series;
+  ObserverTables observer_tables;  // the tables of observers that read their own (observer_schema.hpp)
   FieldConfig field;
   TracersConfig tracers;
   CoarseGrainConfig coarse_grain;

@@ -9,6 +9,7 @@
 
 #include "grainflow/config/contact_schema.hpp"
 #include "grainflow/config/face_kinds.hpp"
+#include "grainflow/config/observer_schema.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/config/toml_reader.hpp"
 #include "grainflow/config/particle_csv.hpp"
@@ -460,8 +461,20 @@ void read_output(TomlReader& top, CaseConfig& c) {
   r.reject_unknown_keys();
 }
 
+// The tables of the observers that hand over a schema, each read by its observer's own file.
+void read_observer_tables(TomlReader& top, CaseConfig& c, ObserverSchemas schemas) {
+  for (const ObserverSchema& schema : schemas) {
+    const std::string name(schema.table);
+    if (!top.has(name)) continue;
+    TomlReader r = top.table(name);
+    if (c.engine.kind != schema.engine) top.fail(name, std::string(schema.engine_refusal));
+    schema.read(r, c, c.observer_tables.add(name));
+    r.reject_unknown_keys();
+  }
+}
+
 CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden,
-                 ContactSchemas schemas) {
+                 ContactSchemas schemas, ObserverSchemas observer_schemas) {
   CaseConfig c;
   c.path = file;
   TomlReader top(file, &root, "", &overridden);
@@ -481,7 +494,7 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
   read_run(top, c);
   read_output(top, c);
   read_trajectory(top, c);
-  read_zone_series(top, c);
+  read_observer_tables(top, c, observer_schemas);
   read_field(top, c);
   read_tracers(top, c);
   read_coarse_grain(top, c);
@@ -536,11 +549,11 @@ std::string read_case_file(const std::string& path) {
 }
 
 CaseConfig parse_case(const std::string& text, const std::string& label, const std::vector<std::string>& overrides,
-                      ContactSchemas schemas) {
+                      ContactSchemas schemas, ObserverSchemas observer_schemas) {
   toml::table root = parse_toml(text, label);
   std::set<std::string> overridden;
   for (const auto& assignment : overrides) overridden.insert(apply_override(root, assignment, label));
-  CaseConfig c = parse(root, label, overridden, schemas);
+  CaseConfig c = parse(root, label, overridden, schemas, observer_schemas);
   c.overrides = overrides;
   if (c.particles.init == "file") read_initial_particles(c, std::filesystem::path(label).parent_path());
   return c;

@@ -61,20 +61,6 @@ void read_trajectory(TomlReader& top, CaseConfig& c) {
   }
 }
 
-// [zone_series]
-void read_zone_series(TomlReader& top, CaseConfig& c) {
-  if (top.has("zone_series")) {
-    TomlReader r = top.table("zone_series");
-    auto& z = c.zone_series;
-    if (c.engine.kind != "dem") top.fail("zone_series", "zone velocity histories are implemented for the DEM engine only");
-    z.enabled = true;
-    read_sampling(r, z.start, z.samples, 16);
-    z.interval = r.number("interval", 0.0);
-    if (z.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
-    r.reject_unknown_keys();
-  }
-}
-
 // [field]
 void read_field(TomlReader& top, CaseConfig& c) {
   if (top.has("field")) {

@@ -186,16 +186,6 @@ void validate_fixed_positions(const CaseConfig& c) {
     }
 }
 
-// [zone_series]: an interval (given, or from a drive along gravity) of at least a step.
-void validate_zone_series(const CaseConfig& c, const dem::DerivedQuantities& d) {
-  if (!c.zone_series.enabled) return;
-  const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
-  if (c.zone_series.interval == 0.0 && !(f > 0.0))
-    fail(c, "zone_series.interval", "needs a value: there is no drive along gravity to take 20 samples per period of");
-  const double interval = c.zone_series.interval > 0.0 ? c.zone_series.interval : 1.0 / (20.0 * f);
-  if (interval < d.time_step) fail(c, "zone_series.interval", "is shorter than one time step");
-}
-
 // [field]: a horizontal axis, cells that fill, phase bins with a drive, steps per sample.
 void validate_field(const CaseConfig& c, const dem::DerivedQuantities& d) {
   if (!c.field.enabled) return;
@@ -270,7 +260,7 @@ void validate_trajectory(const CaseConfig& c, const dem::DerivedQuantities& d) {
 
 }  // namespace
 
-void validate_dem_case(const CaseConfig& c) {
+DerivedQuantities validate_dem_case(const CaseConfig& c) {
   const int dim = c.engine.dimension;
   if (dim == 2) validate_planar(c);
   visit_contact_law(c.contact.model, [&]<ContactLaw Law>() {
@@ -308,12 +298,12 @@ void validate_dem_case(const CaseConfig& c) {
     fail(c, "species.count", "more than 2e8 particles cannot run on one machine");
   const double steps = c.run.duration / d.time_step;
   if (steps > 1e13) fail(c, "run.duration", "needs more than 1e13 time steps");
-  validate_zone_series(c, d);
   validate_fixed_positions(c);
   validate_field(c, d);
   validate_tracers(c, d);
   validate_coarse_grain(c, d);
   validate_trajectory(c, d);
+  return d;
 }
 
 }  // namespace grainflow::dem
