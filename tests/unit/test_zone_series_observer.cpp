@@ -3,16 +3,13 @@
 // through the schema it hands the case loader.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <string>
 
-#include "grainflow/config/case_parser.hpp"
 #include "grainflow/config/case_writer.hpp"
-#include "grainflow/core/error.hpp"
 #include "grainflow/io/hdf5_file.hpp"
-#include "grainflow/run/case_loader.hpp"
 #include "grainflow/observe/zone_series_observer.hpp"
 #include "observer_fixture.hpp"
+#include "observer_table_checks.hpp"
 
 namespace grainflow {
 namespace {
@@ -75,31 +72,12 @@ TEST(ZoneSeriesObserver, WarnsWhenTheRunEndsBeforeAllSamples) {
   EXPECT_NE(z.warnings[0].find("3 of the 5"), std::string::npos) << z.warnings[0];
 }
 
-// Lan's spectra case, whose [zone_series] gives start and samples, with its samples line replaced.
-const std::string kSpectraCase = std::string(GRAINFLOW_SOURCE_DIR) + "/cases/lan1994/sec4_3_spectra.toml";
-
-CaseConfig load_spectra_case(const std::string& samples_line = "samples = 2048") {
-  std::string text = read_case_file(kSpectraCase);
-  const auto at = text.find("samples = 2048");
-  EXPECT_NE(at, std::string::npos) << "test bug: no samples line in " << kSpectraCase;
-  if (at != std::string::npos) text.replace(at, std::string("samples = 2048").size(), samples_line);
-  return load_case_from_string(text, kSpectraCase);
-}
-
-// The case must be refused with an InputError naming the case file, `key` and `reason_part`.
-void expect_refused(const std::string& samples_line, const std::string& key, const std::string& reason_part) {
-  try {
-    load_spectra_case(samples_line);
-    ADD_FAILURE() << "expected InputError for key '" << key << "', but the case loaded";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.file(), kSpectraCase) << e.what();
-    EXPECT_EQ(e.key(), key) << e.what();
-    EXPECT_NE(e.reason().find(reason_part), std::string::npos) << e.what();
-  }
-}
+// Lan's spectra case, whose [zone_series] gives start and samples; the tests edit its samples line.
+const std::string kSpectraCase = test::bundled_case("lan1994/sec4_3_spectra.toml");
+const std::string kSamples = "samples = 2048";
 
 TEST(ZoneSeriesObserver, ReadsItsOwnTableWithItsDefaults) {
-  const CaseConfig c = load_spectra_case();
+  const CaseConfig c = test::load_edited_case(kSpectraCase, kSamples, kSamples);
   ASSERT_TRUE(c.observer_tables.has("zone_series"));
   const ObserverParameters& table = c.observer_tables.at("zone_series");
   EXPECT_EQ(table.number("start"), 15.0);
@@ -107,19 +85,22 @@ TEST(ZoneSeriesObserver, ReadsItsOwnTableWithItsDefaults) {
   EXPECT_EQ(table.number("interval"), 0.0);  // 1 / (20 f) at run time
   // The case writer writes the table back as the observer stored it, and it reads back the same.
   const std::string written = write_case_toml(c);
-  EXPECT_NE(written.find("\n[zone_series]\nstart = 15.0\nsamples = 2048\ninterval = 0.0\n"), std::string::npos) << written;
+  const std::string expected = "\n[zone_series]\nstart = 15.0\nsamples = 2048\ninterval = 0.0\n";
+  EXPECT_NE(written.find(expected), std::string::npos) << written;
   EXPECT_EQ(load_case_from_string(written, kSpectraCase).observer_tables, c.observer_tables);
 }
 
 TEST(ZoneSeriesObserver, RefusesAnUnknownKeyOfItsTable) {
-  expect_refused("samples = 2048\nwindow = 0.1", "zone_series.window", "unknown key");
+  test::expect_refused(kSpectraCase, kSamples, "samples = 2048\nwindow = 0.1", "zone_series.window", "unknown key");
 }
 
 TEST(ZoneSeriesObserver, RefusesBadValuesOfItsTableWithTheKeyAndReason) {
-  expect_refused("samples = 8", "zone_series.samples", "needs at least 16 samples");
-  expect_refused("samples = 2048\ninterval = -1.0", "zone_series.interval", "must not be negative");
+  test::expect_refused(kSpectraCase, kSamples, "samples = 8", "zone_series.samples", "needs at least 16 samples");
+  test::expect_refused(kSpectraCase, kSamples, "samples = 2048\ninterval = -1.0", "zone_series.interval",
+                       "must not be negative");
   // Its check against the run: an interval shorter than the time step.
-  expect_refused("samples = 2048\ninterval = 1.0e-10", "zone_series.interval", "is shorter than one time step");
+  test::expect_refused(kSpectraCase, kSamples, "samples = 2048\ninterval = 1.0e-10", "zone_series.interval",
+                       "is shorter than one time step");
 }
 
 }  // namespace

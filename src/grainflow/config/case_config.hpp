@@ -177,19 +177,6 @@ struct OutputConfig {
   double bed_surface_fraction = 0.1;  // the surface is the highest d/10 slice at least this full
 };
 
-// [field]: long-term and floor-phase mean velocities on a grid of cells in the plane of the gravity
-// axis and one horizontal axis (Lan 1994 Chapter 5, Fig. 5.1), and the average convection speed of
-// Table 5.1; convection.csv and convection_phases.csv.
-struct FieldConfig {
-  bool operator==(const FieldConfig&) const = default;  // the case writer's round-trip test
-  bool enabled = false;
-  int axis = 2;             // the horizontal axis of the plane (default z, Lan's cell length)
-  double cell = 0.0;        // m, cell length and height; 0 = reference species diameter
-  double start = -1.0;      // s; < 0: output.average_start
-  double interval = 0.0;    // s between samples; 0 = every time step (Lan's method)
-  int phase_bins = 8;       // bins of the floor cycle for the phase-averaged fields; 0 = none
-};
-
 // [tracers]: position, velocity and coordination number histories of chosen particles (Lan 1994
 // section 5.2, the large sphere; Figs. A5.12-A5.17); tracers.csv.
 struct TracersConfig {
@@ -267,7 +254,6 @@ struct CaseConfig {
   OutputConfig output;
   TrajectoryConfig trajectory;
   ObserverTables observer_tables;  // the tables of observers that read their own (observer_schema.hpp)
-  FieldConfig field;
   TracersConfig tracers;
   CoarseGrainConfig coarse_grain;
   std::vector<InitialParticle> initial_particles;  // read from particles.file

@@ -495,7 +495,6 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
   read_output(top, c);
   read_trajectory(top, c);
   read_observer_tables(top, c, observer_schemas);
-  read_field(top, c);
   read_tracers(top, c);
   read_coarse_grain(top, c);
   top.reject_unknown_keys();

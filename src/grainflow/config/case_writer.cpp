@@ -255,15 +255,6 @@ void write_samplers(Out& o, const CaseConfig& c) {
     o.key("particles", t.particles.empty() ? quoted("all") : id_list(t.particles));
   }
   write_observer_tables(o, c.observer_tables);
-  if (c.field.enabled) {
-    const auto& f = c.field;
-    o.table("field");
-    o.key("axis", quoted(std::string(1, static_cast<char>('x' + f.axis))));
-    o.key("cell", f.cell);
-    if (f.start >= 0.0) o.key("start", f.start);
-    o.key("interval", f.interval);
-    o.key("phase_bins", f.phase_bins);
-  }
   if (c.tracers.enabled) {
     const auto& t = c.tracers;
     o.table("tracers");

@@ -61,29 +61,6 @@ void read_trajectory(TomlReader& top, CaseConfig& c) {
   }
 }
 
-// [field]
-void read_field(TomlReader& top, CaseConfig& c) {
-  if (top.has("field")) {
-    TomlReader r = top.table("field");
-    auto& f = c.field;
-    if (c.engine.kind != "dem") top.fail("field", "velocity fields are implemented for the DEM engine only");
-    f.enabled = true;
-    const std::string axis = r.string("axis", "z");
-    if (axis != "x" && axis != "y" && axis != "z") r.fail("axis", "must be \"x\", \"y\" or \"z\"");
-    f.axis = axis[0] - 'x';
-    f.cell = r.number("cell", 0.0);
-    if (f.cell < 0.0) r.fail("cell", "must not be negative (0 = one diameter)");
-    f.start = r.number("start", -1.0);
-    if (r.has("start") && f.start < 0.0) r.fail("start", "must not be negative");
-    f.interval = r.number("interval", 0.0);
-    if (f.interval < 0.0) r.fail("interval", "must not be negative (0 = every time step)");
-    const long long bins = r.integer("phase_bins", f.phase_bins);
-    if (bins < 0 || bins > 360) r.fail("phase_bins", "must lie in [0, 360] (0 = no phase-binned fields)");
-    f.phase_bins = static_cast<int>(bins);
-    r.reject_unknown_keys();
-  }
-}
-
 // [tracers]
 void read_tracers(TomlReader& top, CaseConfig& c) {
   if (top.has("tracers")) {

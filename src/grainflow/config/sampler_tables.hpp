@@ -1,5 +1,5 @@
-// The readers of the sampling tables the parser still reads itself ([trajectory], [field],
-// [tracers], [coarse_grain]), and the key readers those tables share with an observer's
+// The readers of the sampling tables the parser still reads itself ([trajectory], [tracers],
+// [coarse_grain]), and the key readers those tables share with an observer's
 // own schema (config/observer_schema.hpp): the sampling window and a list of particle ids.
 #pragma once
 
@@ -19,7 +19,6 @@ void read_sampling(TomlReader& r, double& start, long long& samples, long long f
 
 // Each reads its table from `top` when the case has it (the engine and protocol it needs checked).
 void read_trajectory(TomlReader& top, CaseConfig& c);
-void read_field(TomlReader& top, CaseConfig& c);
 void read_tracers(TomlReader& top, CaseConfig& c);
 void read_coarse_grain(TomlReader& top, CaseConfig& c);
 

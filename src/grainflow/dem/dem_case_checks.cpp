@@ -186,19 +186,6 @@ void validate_fixed_positions(const CaseConfig& c) {
     }
 }
 
-// [field]: a horizontal axis, cells that fill, phase bins with a drive, steps per sample.
-void validate_field(const CaseConfig& c, const dem::DerivedQuantities& d) {
-  if (!c.field.enabled) return;
-  if (c.field.axis == d.gravity_axis)
-    fail(c, "field.axis", "must be a horizontal axis; it is the gravity axis");
-  if (c.field.cell > 0.0 && c.field.cell < 0.1 * d.reference_diameter)
-    fail(c, "field.cell", "is under a tenth of a diameter: most cells would stay empty");
-  const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
-  if (c.field.phase_bins > 0 && !(f > 0.0))
-    fail(c, "field.phase_bins", "needs a drive along gravity (set phase_bins = 0 for the long-term field only)");
-  if (c.field.interval > 0.0 && c.field.interval < d.time_step) fail(c, "field.interval", "is shorter than one time step");
-}
-
 // [tracers]: ids that exist, an interval of at least a step.
 void validate_tracers(const CaseConfig& c, const dem::DerivedQuantities& d) {
   if (!c.tracers.enabled) return;
@@ -299,7 +286,6 @@ DerivedQuantities validate_dem_case(const CaseConfig& c) {
   const double steps = c.run.duration / d.time_step;
   if (steps > 1e13) fail(c, "run.duration", "needs more than 1e13 time steps");
   validate_fixed_positions(c);
-  validate_field(c, d);
   validate_tracers(c, d);
   validate_coarse_grain(c, d);
   validate_trajectory(c, d);

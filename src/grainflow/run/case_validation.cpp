@@ -91,7 +91,8 @@ void validate_case(const CaseConfig& c) {
     return;
   }
   const dem::DerivedQuantities d = dem::validate_dem_case(c);
-  check_observer_tables({c, d.time_step, d.reference_diameter, d.gravity_axis, d.moving_particles + d.frozen_particles});
+  const long particles = d.moving_particles + d.frozen_particles;
+  check_observer_tables({c, d.time_step, d.reference_diameter, d.gravity_axis, particles});
 }
 
 }  // namespace grainflow

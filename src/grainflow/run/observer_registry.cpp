@@ -50,7 +50,7 @@ constexpr Registered kObservers[] = {
      [](const observe::RunContext& run, const observe::Frame&, const std::vector<Made>&) -> Made {
        return std::make_unique<observe::ZoneSeriesObserver>(run);
      }},
-    {"field", EngineKind::dem, nullptr, [](const CaseConfig& c) { return c.field.enabled; },
+    {"field", EngineKind::dem, &observe::ConvectionObserver::table, kByTable,
      [](const observe::RunContext& run, const observe::Frame&, const std::vector<Made>&) -> Made {
        return std::make_unique<observe::ConvectionObserver>(run);
      }},
