@@ -21,7 +21,11 @@ TEST(ObserverRegistry, SoftSphereRunGetsTheTablesItsCaseEnables) {
   EXPECT_EQ(names(run::make_observers(run::EngineKind::dem, f.context(1e-5), f.at(0.0))),
             (std::vector<std::string>{"profiles"}));  // the zone profiles always
   f.c.tracers.enabled = true;
-  f.c.field.enabled = true;
+  ObserverParameters& field = f.c.observer_tables.add("field");  // as [field] with its defaults reads
+  field.set_text("axis", "z");
+  field.set_number("cell", 0.0);
+  field.set_number("interval", 0.0);
+  field.set_integer("phase_bins", 8);
   f.c.output.stresses = true;
   f.c.coarse_grain.enabled = true;
   EXPECT_EQ(names(run::make_observers(run::EngineKind::dem, f.context(1e-5), f.at(0.0))),

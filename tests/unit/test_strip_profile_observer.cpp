@@ -12,17 +12,23 @@
 namespace grainflow {
 namespace {
 
+// A Couette cell 10 mm tall (walls at ylo and yhi, periodic along x and z), averaging from
+// `average_start`.
+void make_couette_cell(test::ObserverFixture& f, double average_start) {
+  f.c.output.average_start = average_start;
+  f.c.output.interval = 1.0;
+  f.box.periodic = {true, false, true};
+  f.add_wall(2, 0.0);
+  f.add_wall(3, 0.01);
+}
+
 // A Couette cell 10 mm tall with 1 mm discs' worth of strips: in strip k two spheres at its centre
 // move at u = shear y +- delta_k and v = -+ delta_k, so each strip's mean u is shear y, and
 // <u'^2> = <v'^2> = delta_k^2: S_listing = 2R (du/dy) / sqrt(2 delta_k^2). delta_k grows with k, so
 // the mean over the strips (the listing's) and the middle strip's S differ by ~30 %.
 TEST(StripProfileObserver, SavageJeffreySOfEachStripAndTheirMean) {
   test::ObserverFixture f;
-  f.c.output.average_start = 0.0;
-  f.c.output.interval = 1.0;
-  f.box.periodic = {true, false, true};
-  f.add_wall(2, 0.0);
-  f.add_wall(3, 0.01);
+  make_couette_cell(f, 0.0);
   const double shear = 50.0;  // 1/s
   auto delta = [](int k) { return 0.005 * (1.0 + 0.5 * k); };  // m/s
   std::uint32_t id = 0;
@@ -49,6 +55,28 @@ TEST(StripProfileObserver, SavageJeffreySOfEachStripAndTheirMean) {
     ASSERT_NE(at, std::string::npos) << key << " missing in " << text;
     EXPECT_NEAR(std::stod(text.substr(at + std::string(key).size())), expected, 1e-9 * expected) << key;
   }
+}
+
+// A run reads when the long-term averages began through the Observer interface, not the concrete
+// type: NaN before the first sample, then its time; an observer that keeps no averages says NaN.
+TEST(StripProfileObserver, TellsARunThroughTheObserverInterfaceWhenItsAveragesBegan) {
+  test::ObserverFixture f;
+  make_couette_cell(f, 0.05);
+  f.add(0, {0.002, 0.005, 0.005}, {0.1, 0.0, 0.0});
+  const observe::RunContext run = f.context(0.0);
+  observe::StripProfileObserver profiles(run, f.at(0.0));
+  const observe::Observer& seen = profiles;
+  EXPECT_TRUE(std::isnan(seen.first_sample_time()));
+  profiles.sample(f.at(0.1));
+  profiles.sample(f.at(0.2));
+  EXPECT_EQ(seen.first_sample_time(), 0.1);
+
+  struct NoAverages final : observe::Observer {
+    std::string name() const override { return "none"; }
+    void sample(const observe::Frame&) override {}
+    void serialize(io::StateArchive&) override {}
+  } none;
+  EXPECT_TRUE(std::isnan(static_cast<const observe::Observer&>(none).first_sample_time()));
 }
 
 // Unbounded simple shear (Lees-Edwards, periodic along y): rows of spheres every quarter diameter

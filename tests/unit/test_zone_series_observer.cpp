@@ -1,20 +1,25 @@
 // ZoneSeriesObserver (zone_series.h5): each zone's instantaneous mean velocity and the floor's
-// motion on a fixed time grid.
+// motion on a fixed time grid; its own case table ([zone_series]) read, checked and written back
+// through the schema it hands the case loader.
 #include <gtest/gtest.h>
 
+#include <string>
+
+#include "grainflow/config/case_writer.hpp"
 #include "grainflow/io/hdf5_file.hpp"
 #include "grainflow/observe/zone_series_observer.hpp"
 #include "observer_fixture.hpp"
+#include "observer_table_checks.hpp"
 
 namespace grainflow {
 namespace {
 
 struct ZoneSeriesCase : test::ObserverFixture {
   ZoneSeriesCase() {
-    c.zone_series.enabled = true;
-    c.zone_series.start = 0.0;
-    c.zone_series.interval = 1e-3;
-    c.zone_series.samples = 3;
+    ObserverParameters& table = c.observer_tables.add("zone_series");
+    table.set_number("start", 0.0);
+    table.set_integer("samples", 3);
+    table.set_number("interval", 1e-3);
     c.drive.enabled = true;
     c.drive.face = 2;
     // Zones are one diameter (1 mm) thick from y = 0: these spheres lie wholly in zones 0 and 2.
@@ -58,13 +63,44 @@ TEST(ZoneSeriesObserver, RecordsEachZonesMeanVelocityAndTheFloorOnItsGrid) {
 
 TEST(ZoneSeriesObserver, WarnsWhenTheRunEndsBeforeAllSamples) {
   ZoneSeriesCase z;
-  z.c.zone_series.samples = 5;
+  z.c.observer_tables.add("zone_series").set_integer("samples", 5);
   observe::ZoneSeriesObserver series(z.context(1e-4));
   for (long step = 0; step <= 20; ++step) series.sample(z.at(step * 1e-4, step, 1e-4));
   auto sink = z.sink();
   series.finish(sink);
   ASSERT_EQ(z.warnings.size(), 1u);
   EXPECT_NE(z.warnings[0].find("3 of the 5"), std::string::npos) << z.warnings[0];
+}
+
+// Lan's spectra case, whose [zone_series] gives start and samples; the tests edit its samples line.
+const std::string kSpectraCase = test::bundled_case("lan1994/sec4_3_spectra.toml");
+const std::string kSamples = "samples = 2048";
+
+TEST(ZoneSeriesObserver, ReadsItsOwnTableWithItsDefaults) {
+  const CaseConfig c = test::load_edited_case(kSpectraCase, kSamples, kSamples);
+  ASSERT_TRUE(c.observer_tables.has("zone_series"));
+  const ObserverParameters& table = c.observer_tables.at("zone_series");
+  EXPECT_EQ(table.number("start"), 15.0);
+  EXPECT_EQ(table.integer("samples"), 2048);
+  EXPECT_EQ(table.number("interval"), 0.0);  // 1 / (20 f) at run time
+  // The case writer writes the table back as the observer stored it, and it reads back the same.
+  const std::string written = write_case_toml(c);
+  const std::string expected = "\n[zone_series]\nstart = 15.0\nsamples = 2048\ninterval = 0.0\n";
+  EXPECT_NE(written.find(expected), std::string::npos) << written;
+  EXPECT_EQ(load_case_from_string(written, kSpectraCase).observer_tables, c.observer_tables);
+}
+
+TEST(ZoneSeriesObserver, RefusesAnUnknownKeyOfItsTable) {
+  test::expect_refused(kSpectraCase, kSamples, "samples = 2048\nwindow = 0.1", "zone_series.window", "unknown key");
+}
+
+TEST(ZoneSeriesObserver, RefusesBadValuesOfItsTableWithTheKeyAndReason) {
+  test::expect_refused(kSpectraCase, kSamples, "samples = 8", "zone_series.samples", "needs at least 16 samples");
+  test::expect_refused(kSpectraCase, kSamples, "samples = 2048\ninterval = -1.0", "zone_series.interval",
+                       "must not be negative");
+  // Its check against the run: an interval shorter than the time step.
+  test::expect_refused(kSpectraCase, kSamples, "samples = 2048\ninterval = 1.0e-10", "zone_series.interval",
+                       "is shorter than one time step");
 }
 
 }  // namespace

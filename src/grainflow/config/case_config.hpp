@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "grainflow/config/contact_parameters.hpp"
+#include "grainflow/config/observer_tables.hpp"
 #include "grainflow/core/vec3.hpp"
 
 namespace grainflow {
@@ -176,19 +177,6 @@ struct OutputConfig {
   double bed_surface_fraction = 0.1;  // the surface is the highest d/10 slice at least this full
 };
 
-// [field]: long-term and floor-phase mean velocities on a grid of cells in the plane of the gravity
-// axis and one horizontal axis (Lan 1994 Chapter 5, Fig. 5.1), and the average convection speed of
-// Table 5.1; convection.csv and convection_phases.csv.
-struct FieldConfig {
-  bool operator==(const FieldConfig&) const = default;  // the case writer's round-trip test
-  bool enabled = false;
-  int axis = 2;             // the horizontal axis of the plane (default z, Lan's cell length)
-  double cell = 0.0;        // m, cell length and height; 0 = reference species diameter
-  double start = -1.0;      // s; < 0: output.average_start
-  double interval = 0.0;    // s between samples; 0 = every time step (Lan's method)
-  int phase_bins = 8;       // bins of the floor cycle for the phase-averaged fields; 0 = none
-};
-
 // [tracers]: position, velocity and coordination number histories of chosen particles (Lan 1994
 // section 5.2, the large sphere; Figs. A5.12-A5.17); tracers.csv.
 struct TracersConfig {
@@ -213,16 +201,6 @@ struct TrajectoryConfig {
   long long samples = 2000;      // windows to record
   long long max_lag = 0;         // samples, the longest lag `grainflow analyze` uses; 0: samples / 2
   std::vector<std::uint32_t> particles;  // ids to follow; empty: every free particle
-};
-
-// [zone_series]: histories of each zone's instantaneous mean velocity and of the floor, sampled at
-// their own interval, for spectra and floor cross-correlations (Lan 1994 section 4.3); zone_series.h5.
-struct ZoneSeriesConfig {
-  bool operator==(const ZoneSeriesConfig&) const = default;  // the case writer's round-trip test
-  bool enabled = false;
-  double start = -1.0;      // s; < 0: output.average_start
-  double interval = 0.0;    // s; 0: 1 / (20 f), f the drive frequency along the gravity axis
-  long long samples = 2048;
 };
 
 // [coarse_grain]: density, solid fraction, velocity, kinetic and contact stress on a 3D grid of
@@ -275,8 +253,7 @@ struct CaseConfig {
   RunConfig run;
   OutputConfig output;
   TrajectoryConfig trajectory;
-  ZoneSeriesConfig zone_series;
-  FieldConfig field;
+  ObserverTables observer_tables;  // the tables of observers that read their own (observer_schema.hpp)
   TracersConfig tracers;
   CoarseGrainConfig coarse_grain;
   std::vector<InitialParticle> initial_particles;  // read from particles.file

@@ -9,9 +9,11 @@
 
 #include "grainflow/config/contact_schema.hpp"
 #include "grainflow/config/face_kinds.hpp"
+#include "grainflow/config/observer_schema.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/config/toml_reader.hpp"
 #include "grainflow/config/particle_csv.hpp"
+#include "grainflow/config/sampler_tables.hpp"
 
 namespace grainflow {
 namespace {
@@ -50,27 +52,6 @@ int face_index(TomlReader& reader, const std::string& key, const std::string& na
   for (int f = 0; f < 6; ++f)
     if (name == kFaceNames[f]) return f;
   reader.fail(key, "unknown face '" + name + "' (valid: xlo, xhi, ylo, yhi, zlo, zhi)");
-}
-
-// The sampling window keys shared by [trajectory] and [zone_series]: start (< 0 when absent: the
-// caller's default) and samples, at least `fewest`.
-// The `particles` key's array of particle ids ([trajectory], [tracers]).
-std::vector<std::uint32_t> read_particle_ids(TomlReader& r, const toml::array& list) {
-  std::vector<std::uint32_t> ids;
-  for (const auto& item : list) {
-    const auto value = item.value<std::int64_t>();
-    if (!value || *value < 0 || *value > 0xFFFFFFFFll) r.fail("particles", "ids must be non-negative integers");
-    ids.push_back(static_cast<std::uint32_t>(*value));
-  }
-  return ids;
-}
-
-void read_sampling(TomlReader& r, double& start, long long& samples, long long fewest) {
-  start = r.number("start", -1.0);
-  if (r.has("start") && start < 0.0) r.fail("start", "must not be negative");
-  samples = r.integer("samples", samples);
-  if (samples < fewest) r.fail("samples", "needs at least " + std::to_string(fewest) + " samples");
-  if (samples > 100000000) r.fail("samples", "more than 10^8 samples is surely a mistake");
 }
 
 // A key of another registered contact law is named as such rather than as unknown.
@@ -480,148 +461,20 @@ void read_output(TomlReader& top, CaseConfig& c) {
   r.reject_unknown_keys();
 }
 
-// [trajectory]
-void read_trajectory(TomlReader& top, CaseConfig& c) {
-  if (top.has("trajectory")) {
-    if (c.run.protocol == "campbell")
-      top.fail("trajectory", "a trajectory spans the whole run; with run.protocol = \"campbell\" each segment starts its averages afresh");
-    TomlReader r = top.table("trajectory");
-    auto& t = c.trajectory;
-    t.enabled = true;
-    read_sampling(r, t.start, t.samples, 2);
-    if (c.engine.kind == "dem") {  // windowed averages for correlations (Lan)
-      if (r.has("interval")) r.fail("interval", "is for event-driven runs; a DEM trajectory's samples are `window` apart");
-      t.window = r.number("window", 0.0);
-      if (t.window < 0.0) r.fail("window", "must not be negative (0 = half a collision time, Lan's t_s)");
-      t.max_lag = r.integer("max_lag", 0);
-      if (t.max_lag < 0 || t.max_lag >= t.samples) r.fail("max_lag", "must lie in [0, samples) (0 = samples / 2)");
-    } else {  // instantaneous states for distributions (Campbell)
-      for (const char* key : {"window", "max_lag"})
-        if (r.has(key)) r.fail(key, "is for DEM runs; an event-driven trajectory holds instantaneous states `interval` apart");
-      t.interval = r.number("interval", 0.0);
-      if (t.interval < 0.0) r.fail("interval", "must not be negative (0 = the rest of the run spread over the samples)");
-    }
-    if (const toml::node* ids = r.raw("particles")) {
-      if (const auto* word = ids->as_string()) {
-        if (word->get() != "all") r.fail("particles", "must be \"all\" or an array of particle ids");
-      } else if (const auto* list = ids->as_array()) {
-        t.particles = read_particle_ids(r, *list);
-        if (t.particles.empty()) r.fail("particles", "an empty list follows nobody (use \"all\")");
-      } else {
-        r.fail("particles", "must be \"all\" or an array of particle ids");
-      }
-    }
+// The tables of the observers that hand over a schema, each read by its observer's own file.
+void read_observer_tables(TomlReader& top, CaseConfig& c, ObserverSchemas schemas) {
+  for (const ObserverSchema& schema : schemas) {
+    const std::string name(schema.table);
+    if (!top.has(name)) continue;
+    TomlReader r = top.table(name);
+    if (c.engine.kind != schema.engine) top.fail(name, std::string(schema.engine_refusal));
+    schema.read(r, c, c.observer_tables.add(name));
     r.reject_unknown_keys();
   }
-}
-
-// [zone_series]
-void read_zone_series(TomlReader& top, CaseConfig& c) {
-  if (top.has("zone_series")) {
-    TomlReader r = top.table("zone_series");
-    auto& z = c.zone_series;
-    if (c.engine.kind != "dem") top.fail("zone_series", "zone velocity histories are implemented for the DEM engine only");
-    z.enabled = true;
-    read_sampling(r, z.start, z.samples, 16);
-    z.interval = r.number("interval", 0.0);
-    if (z.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
-    r.reject_unknown_keys();
-  }
-}
-
-// [field]
-void read_field(TomlReader& top, CaseConfig& c) {
-  if (top.has("field")) {
-    TomlReader r = top.table("field");
-    auto& f = c.field;
-    if (c.engine.kind != "dem") top.fail("field", "velocity fields are implemented for the DEM engine only");
-    f.enabled = true;
-    const std::string axis = r.string("axis", "z");
-    if (axis != "x" && axis != "y" && axis != "z") r.fail("axis", "must be \"x\", \"y\" or \"z\"");
-    f.axis = axis[0] - 'x';
-    f.cell = r.number("cell", 0.0);
-    if (f.cell < 0.0) r.fail("cell", "must not be negative (0 = one diameter)");
-    f.start = r.number("start", -1.0);
-    if (r.has("start") && f.start < 0.0) r.fail("start", "must not be negative");
-    f.interval = r.number("interval", 0.0);
-    if (f.interval < 0.0) r.fail("interval", "must not be negative (0 = every time step)");
-    const long long bins = r.integer("phase_bins", f.phase_bins);
-    if (bins < 0 || bins > 360) r.fail("phase_bins", "must lie in [0, 360] (0 = no phase-binned fields)");
-    f.phase_bins = static_cast<int>(bins);
-    r.reject_unknown_keys();
-  }
-}
-
-// [tracers]
-void read_tracers(TomlReader& top, CaseConfig& c) {
-  if (top.has("tracers")) {
-    TomlReader r = top.table("tracers");
-    auto& t = c.tracers;
-    if (c.engine.kind != "dem") top.fail("tracers", "tracer histories are implemented for the DEM engine only");
-    t.enabled = true;
-    if (const toml::node* ids = r.raw("particles")) {
-      const auto* list = ids->as_array();
-      if (!list) r.fail("particles", "must be an array of particle ids");
-      t.particles = read_particle_ids(r, *list);
-    }
-    if (const toml::node* names = r.raw("species")) {
-      const auto* list = names->as_array();
-      if (!list) r.fail("species", "must be an array of species names");
-      for (const auto& item : *list) {
-        const auto name = item.value<std::string>();
-        if (!name) r.fail("species", "must be an array of species names");
-        const bool known = std::any_of(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == *name; });
-        if (!known) r.fail("species", "no species is named '" + *name + "'");
-        t.species.push_back(*name);
-      }
-    }
-    if (t.particles.empty() && t.species.empty()) r.fail("particles", "name particle ids or species to follow");
-    t.start = r.number("start", 0.0);
-    if (t.start < 0.0) r.fail("start", "must not be negative");
-    t.interval = r.number("interval", 0.0);
-    if (t.interval < 0.0) r.fail("interval", "must not be negative (0 = 20 samples per drive period)");
-    r.reject_unknown_keys();
-  }
-}
-
-// [coarse_grain]
-void read_coarse_grain(TomlReader& top, CaseConfig& c) {
-  if (!top.has("coarse_grain")) return;
-  TomlReader r = top.table("coarse_grain");
-  auto& g = c.coarse_grain;
-  if (c.engine.kind != "dem")
-    top.fail("coarse_grain", "coarse-grained fields are implemented for the DEM engine only (event-driven runs write "
-                             "strip profiles and stresses.csv)");
-  g.enabled = true;
-  g.kernel = r.string("kernel", g.kernel);
-  if (g.kernel != "gaussian" && g.kernel != "lucy") r.fail("kernel", "must be \"gaussian\" or \"lucy\"");
-  if (g.kernel == "gaussian") {
-    if (r.has("cutoff")) r.fail("cutoff", "belongs to kernel = \"lucy\"; a Gaussian's size is its standard deviation, width");
-    g.width = r.number("width", 0.0);
-    if (g.width < 0.0) r.fail("width", "must be positive (or 0: half the reference diameter)");
-  } else {
-    if (r.has("width")) r.fail("width", "belongs to kernel = \"gaussian\"; Lucy's kernel is sized by its cutoff radius");
-    g.cutoff = r.number("cutoff", 0.0);
-    if (g.cutoff < 0.0) r.fail("cutoff", "must be positive (or 0: sqrt(3) reference diameters)");
-  }
-  if (const toml::node* cells = r.raw("cells")) {
-    const auto* list = cells->as_array();
-    if (!list || list->size() != 3) r.fail("cells", "must be an array of three cell counts [nx, ny, nz]");
-    for (int a = 0; a < 3; ++a) {
-      const auto n = (*list)[static_cast<std::size_t>(a)].value<std::int64_t>();
-      if (!n || *n < 1 || *n > 100000) r.fail("cells", "each count must be an integer in [1, 100000]");
-      g.cells[a] = static_cast<int>(*n);
-    }
-  }
-  g.start = r.number("start", -1.0);
-  if (r.has("start") && g.start < 0.0) r.fail("start", "must not be negative");
-  g.interval = r.number("interval", 0.0);
-  if (g.interval < 0.0) r.fail("interval", "must not be negative (0 = output.profile_interval)");
-  r.reject_unknown_keys();
 }
 
 CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden,
-                 ContactSchemas schemas) {
+                 ContactSchemas schemas, ObserverSchemas observer_schemas) {
   CaseConfig c;
   c.path = file;
   TomlReader top(file, &root, "", &overridden);
@@ -641,8 +494,7 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
   read_run(top, c);
   read_output(top, c);
   read_trajectory(top, c);
-  read_zone_series(top, c);
-  read_field(top, c);
+  read_observer_tables(top, c, observer_schemas);
   read_tracers(top, c);
   read_coarse_grain(top, c);
   top.reject_unknown_keys();
@@ -696,11 +548,11 @@ std::string read_case_file(const std::string& path) {
 }
 
 CaseConfig parse_case(const std::string& text, const std::string& label, const std::vector<std::string>& overrides,
-                      ContactSchemas schemas) {
+                      ContactSchemas schemas, ObserverSchemas observer_schemas) {
   toml::table root = parse_toml(text, label);
   std::set<std::string> overridden;
   for (const auto& assignment : overrides) overridden.insert(apply_override(root, assignment, label));
-  CaseConfig c = parse(root, label, overridden, schemas);
+  CaseConfig c = parse(root, label, overridden, schemas, observer_schemas);
   c.overrides = overrides;
   if (c.particles.init == "file") read_initial_particles(c, std::filesystem::path(label).parent_path());
   return c;

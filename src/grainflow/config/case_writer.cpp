@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <sstream>
+#include <type_traits>
+#include <variant>
 
 namespace grainflow {
 namespace {
@@ -225,6 +227,18 @@ void write_output(Out& o, const CaseConfig& c) {
   }
 }
 
+// The tables of observers with their own schema: each key as the observer stored it, in its order.
+void write_observer_tables(Out& o, const ObserverTables& tables) {
+  for (const auto& [table, parameters] : tables.entries()) {
+    o.table(table);
+    for (const auto& [key, value] : parameters.entries())
+      std::visit([&, &key = key](const auto& v) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::string>) o.text_key(key, v);
+        else o.key(key, v);
+      }, value);
+  }
+}
+
 void write_samplers(Out& o, const CaseConfig& c) {
   const auto id_list = [](const std::vector<std::uint32_t>& v) { return list(v, [](std::uint32_t i) { return std::to_string(i); }); };
   if (c.trajectory.enabled) {
@@ -240,22 +254,7 @@ void write_samplers(Out& o, const CaseConfig& c) {
     }
     o.key("particles", t.particles.empty() ? quoted("all") : id_list(t.particles));
   }
-  if (c.zone_series.enabled) {
-    const auto& z = c.zone_series;
-    o.table("zone_series");
-    if (z.start >= 0.0) o.key("start", z.start);
-    o.key("samples", z.samples);
-    o.key("interval", z.interval);
-  }
-  if (c.field.enabled) {
-    const auto& f = c.field;
-    o.table("field");
-    o.key("axis", quoted(std::string(1, static_cast<char>('x' + f.axis))));
-    o.key("cell", f.cell);
-    if (f.start >= 0.0) o.key("start", f.start);
-    o.key("interval", f.interval);
-    o.key("phase_bins", f.phase_bins);
-  }
+  write_observer_tables(o, c.observer_tables);
   if (c.tracers.enabled) {
     const auto& t = c.tracers;
     o.table("tracers");

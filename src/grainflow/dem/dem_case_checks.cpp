@@ -74,29 +74,9 @@ void validate_servo(const CaseConfig& c) {
       fail(c, std::string("walls.") + kFaceNames[f] + ".velocity", "the servo sets the walls' speeds along y: give 0");
 }
 
-}  // namespace
-
-void validate_dem_case(const CaseConfig& c) {
+// Every periodic axis long enough for the image search.
+void validate_periodic_lengths(const CaseConfig& c, const dem::DerivedQuantities& d) {
   const int dim = c.engine.dimension;
-  if (dim == 2) validate_planar(c);
-  visit_contact_law(c.contact.model, [&]<ContactLaw Law>() {
-    if (const auto problem = Law::species_problem(c.species)) fail(c, "species." + problem->key, problem->reason);
-  });
-  const dem::DerivedQuantities d = dem::derive(c);
-  if (c.lees_edwards_rate != 0.0) validate_lees_edwards(c, d);
-  if (c.servo.enabled) validate_servo(c);
-  if (c.particles.initial_profile == "couette" && (!holds_wall(c.domain.faces[2]) || !holds_wall(c.domain.faces[3])))
-    fail(c, "particles.initial_profile", "the couette profile needs walls at ylo and yhi");
-
-  if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");
-  if (d.law_problem) fail(c, "contact." + d.law_problem->key, d.law_problem->reason);
-  if (d.steps_per_contact < kMinStepsPerContact) {
-    const double suggested = d.contact_duration / kMinStepsPerContact;
-    fail(c, d.time_step_from_case ? "run.time_step" : "run.collision_steps",
-         "time step " + std::to_string(d.time_step) + " s resolves a contact of " +
-             std::to_string(d.contact_duration) + " s in only " + std::to_string(d.steps_per_contact) +
-             " steps; use a time step <= " + std::to_string(suggested) + " s (at least 5 steps per contact)");
-  }
   // A periodic width shorter than two cutoffs is searched for every image within reach, up to
   // kMaxImage box lengths: so at least half a cutoff.
   for (int axis = 0; axis < dim; ++axis) {
@@ -107,6 +87,10 @@ void validate_dem_case(const CaseConfig& c) {
                                " m long; it must be at least (largest diameter + skin) / 2 = " + std::to_string(needed) +
                                " m (images are searched up to two box lengths away)");
   }
+}
+
+// Bumps that neither overlap nor let the smallest free species through.
+void validate_bumpy_walls(const CaseConfig& c) {
   for (int f = 0; f < 6; ++f) {
     if (c.domain.faces[f] != FaceKind::bumpy) continue;
     const dem::BumpLattice lattice = dem::bump_lattice(c, f);
@@ -124,7 +108,11 @@ void validate_dem_case(const CaseConfig& c) {
                        std::to_string(lattice.largest_passing_diameter()) + " m through; the smallest species is " +
                        std::to_string(smallest) + " m (reduce spacing or enlarge bump_diameter)");
   }
-  // Particles must fit where they are placed.
+}
+
+// Particles must fit where they are placed: regions, lattice sites, or the file's positions.
+void validate_placement(const CaseConfig& c, const dem::DerivedQuantities& d) {
+  const int dim = c.engine.dimension;
   if (c.particles.init != "file") {
     Vec3 lo = c.particles.region_lo.value_or(c.domain.lo);
     Vec3 hi = c.particles.region_hi.value_or(c.domain.hi);
@@ -183,6 +171,106 @@ void validate_dem_case(const CaseConfig& c) {
       }
     }
   }
+}
+
+// A species' fixed start position: with random placement, inside the domain.
+void validate_fixed_positions(const CaseConfig& c) {
+  const int dim = c.engine.dimension;
+  for (const auto& s : c.species)
+    if (s.position) {
+      if (c.particles.init != "random")
+        fail(c, "species.position", "species '" + s.name + "': a fixed start position needs particles.init = \"random\"");
+      for (int axis = 0; axis < dim; ++axis)
+        if ((*s.position)[axis] < c.domain.lo[axis] || (*s.position)[axis] > c.domain.hi[axis])
+          fail(c, "species.position", "species '" + s.name + "' starts outside the domain on axis " + "xyz"[axis]);
+    }
+}
+
+// [tracers]: ids that exist, an interval of at least a step.
+void validate_tracers(const CaseConfig& c, const dem::DerivedQuantities& d) {
+  if (!c.tracers.enabled) return;
+  const long total = d.moving_particles + d.frozen_particles;
+  for (auto id : c.tracers.particles)
+    if (id >= static_cast<std::uint64_t>(total))
+      fail(c, "tracers.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
+                                       std::to_string(total - 1) + ")");
+  if (c.tracers.interval > 0.0 && c.tracers.interval < d.time_step) fail(c, "tracers.interval", "is shorter than one time step");
+}
+
+// [coarse_grain]: a grid the kernel resolves and memory holds.
+void validate_coarse_grain(const CaseConfig& c, const dem::DerivedQuantities& d) {
+  const int dim = c.engine.dimension;
+  if (!c.coarse_grain.enabled) return;
+  const auto& g = c.coarse_grain;
+  const std::string size_key = g.kernel == "lucy" ? "coarse_grain.cutoff" : "coarse_grain.width";
+  const double spread = g.standard_deviation(d.reference_diameter, dim);
+  const Vec3 length = c.domain.hi - c.domain.lo;
+  const std::array<int, 3> cells = g.grid(length, d.reference_diameter, dim);
+  if (dim == 2 && cells[2] != 1)
+    fail(c, "coarse_grain.cells", "in 2D the grid has one cell along z (the discs' plane): give [nx, ny, 1]");
+  double count = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    const double h = length[a] / cells[a];
+    // A kernel narrower than the cells puts each point into the one cell it lies in: binning, not
+    // coarse graining.
+    const bool averaged = cells[a] == 1 && (c.domain.periodic(a) || (dim == 2 && a == 2));  // a profile across that axis
+    if (h > 2.0 * spread && !averaged)
+      fail(c, "coarse_grain.cells",
+           std::string("cells ") + fmt_number(h) + " m wide along " + static_cast<char>('x' + a) +
+               " are wider than twice the kernel's standard deviation (" + fmt_number(spread) +
+               " m): the kernel is not resolved; use more cells or a wider kernel (" + size_key + ")");
+    count *= cells[a];
+  }
+  const double bytes = count * kCoarseGrainBytesPerCell;
+  if (bytes > 4e9)
+    fail(c, "coarse_grain.cells", "the grid of " + fmt_number(count) + " cells would take " + fmt_number(bytes / 1e9) +
+                                      " GB; use fewer cells");
+  if (g.interval > 0.0 && g.interval < d.time_step) fail(c, "coarse_grain.interval", "is shorter than one time step");
+}
+
+// [trajectory]: a window of at least a step, ids that exist, a file of sane size.
+void validate_trajectory(const CaseConfig& c, const dem::DerivedQuantities& d) {
+  if (!c.trajectory.enabled) return;
+  const auto& t = c.trajectory;
+  if (t.window > 0.0 && t.window < d.time_step) fail(c, "trajectory.window", "is shorter than one time step");
+  const long total = d.moving_particles + d.frozen_particles;
+  for (auto id : t.particles)
+    if (id >= static_cast<std::uint64_t>(total))
+      fail(c, "trajectory.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
+                                          std::to_string(total - 1) + ")");
+  const double followed = t.particles.empty() ? static_cast<double>(d.moving_particles) : t.particles.size();
+  const double bytes = 48.0 * followed * static_cast<double>(t.samples);  // velocity + position, 6 doubles
+  if (bytes > 64e9)
+    fail(c, "trajectory.samples", "trajectory.h5 would hold " + std::to_string(bytes / 1e9) +
+                                      " GB; follow fewer particles or take fewer samples");
+}
+
+}  // namespace
+
+DerivedQuantities validate_dem_case(const CaseConfig& c) {
+  const int dim = c.engine.dimension;
+  if (dim == 2) validate_planar(c);
+  visit_contact_law(c.contact.model, [&]<ContactLaw Law>() {
+    if (const auto problem = Law::species_problem(c.species)) fail(c, "species." + problem->key, problem->reason);
+  });
+  const dem::DerivedQuantities d = dem::derive(c);
+  if (c.lees_edwards_rate != 0.0) validate_lees_edwards(c, d);
+  if (c.servo.enabled) validate_servo(c);
+  if (c.particles.initial_profile == "couette" && (!holds_wall(c.domain.faces[2]) || !holds_wall(c.domain.faces[3])))
+    fail(c, "particles.initial_profile", "the couette profile needs walls at ylo and yhi");
+
+  if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");
+  if (d.law_problem) fail(c, "contact." + d.law_problem->key, d.law_problem->reason);
+  if (d.steps_per_contact < kMinStepsPerContact) {
+    const double suggested = d.contact_duration / kMinStepsPerContact;
+    fail(c, d.time_step_from_case ? "run.time_step" : "run.collision_steps",
+         "time step " + std::to_string(d.time_step) + " s resolves a contact of " +
+             std::to_string(d.contact_duration) + " s in only " + std::to_string(d.steps_per_contact) +
+             " steps; use a time step <= " + std::to_string(suggested) + " s (at least 5 steps per contact)");
+  }
+  validate_periodic_lengths(c, d);
+  validate_bumpy_walls(c);
+  validate_placement(c, d);
   if (c.drive.enabled && c.domain.faces[c.drive.face] == FaceKind::periodic)
     fail(c, "drive.face", "cannot drive a periodic face");
   if (c.output.snapshot_interval > 0.0 && c.output.snapshot_interval < d.time_step)
@@ -197,80 +285,11 @@ void validate_dem_case(const CaseConfig& c) {
     fail(c, "species.count", "more than 2e8 particles cannot run on one machine");
   const double steps = c.run.duration / d.time_step;
   if (steps > 1e13) fail(c, "run.duration", "needs more than 1e13 time steps");
-  if (c.zone_series.enabled) {
-    const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
-    if (c.zone_series.interval == 0.0 && !(f > 0.0))
-      fail(c, "zone_series.interval", "needs a value: there is no drive along gravity to take 20 samples per period of");
-    const double interval = c.zone_series.interval > 0.0 ? c.zone_series.interval : 1.0 / (20.0 * f);
-    if (interval < d.time_step) fail(c, "zone_series.interval", "is shorter than one time step");
-  }
-  for (const auto& s : c.species)
-    if (s.position) {
-      if (c.particles.init != "random")
-        fail(c, "species.position", "species '" + s.name + "': a fixed start position needs particles.init = \"random\"");
-      for (int axis = 0; axis < dim; ++axis)
-        if ((*s.position)[axis] < c.domain.lo[axis] || (*s.position)[axis] > c.domain.hi[axis])
-          fail(c, "species.position", "species '" + s.name + "' starts outside the domain on axis " + "xyz"[axis]);
-    }
-  if (c.field.enabled) {
-    if (c.field.axis == d.gravity_axis)
-      fail(c, "field.axis", "must be a horizontal axis; it is the gravity axis");
-    if (c.field.cell > 0.0 && c.field.cell < 0.1 * d.reference_diameter)
-      fail(c, "field.cell", "is under a tenth of a diameter: most cells would stay empty");
-    const double f = c.drive.enabled ? c.drive.frequency[d.gravity_axis] : 0.0;
-    if (c.field.phase_bins > 0 && !(f > 0.0))
-      fail(c, "field.phase_bins", "needs a drive along gravity (set phase_bins = 0 for the long-term field only)");
-    if (c.field.interval > 0.0 && c.field.interval < d.time_step) fail(c, "field.interval", "is shorter than one time step");
-  }
-  if (c.tracers.enabled) {
-    const long total = d.moving_particles + d.frozen_particles;
-    for (auto id : c.tracers.particles)
-      if (id >= static_cast<std::uint64_t>(total))
-        fail(c, "tracers.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
-                                         std::to_string(total - 1) + ")");
-    if (c.tracers.interval > 0.0 && c.tracers.interval < d.time_step) fail(c, "tracers.interval", "is shorter than one time step");
-  }
-  if (c.coarse_grain.enabled) {
-    const auto& g = c.coarse_grain;
-    const std::string size_key = g.kernel == "lucy" ? "coarse_grain.cutoff" : "coarse_grain.width";
-    const double spread = g.standard_deviation(d.reference_diameter, dim);
-    const Vec3 length = c.domain.hi - c.domain.lo;
-    const std::array<int, 3> cells = g.grid(length, d.reference_diameter, dim);
-    if (dim == 2 && cells[2] != 1)
-      fail(c, "coarse_grain.cells", "in 2D the grid has one cell along z (the discs' plane): give [nx, ny, 1]");
-    double count = 1.0;
-    for (int a = 0; a < 3; ++a) {
-      const double h = length[a] / cells[a];
-      // A kernel narrower than the cells puts each point into the one cell it lies in: binning, not
-      // coarse graining.
-      const bool averaged = cells[a] == 1 && (c.domain.periodic(a) || (dim == 2 && a == 2));  // a profile across that axis
-      if (h > 2.0 * spread && !averaged)
-        fail(c, "coarse_grain.cells",
-             std::string("cells ") + fmt_number(h) + " m wide along " + static_cast<char>('x' + a) +
-                 " are wider than twice the kernel's standard deviation (" + fmt_number(spread) +
-                 " m): the kernel is not resolved; use more cells or a wider kernel (" + size_key + ")");
-      count *= cells[a];
-    }
-    const double bytes = count * kCoarseGrainBytesPerCell;
-    if (bytes > 4e9)
-      fail(c, "coarse_grain.cells", "the grid of " + fmt_number(count) + " cells would take " + fmt_number(bytes / 1e9) +
-                                        " GB; use fewer cells");
-    if (g.interval > 0.0 && g.interval < d.time_step) fail(c, "coarse_grain.interval", "is shorter than one time step");
-  }
-  if (c.trajectory.enabled) {
-    const auto& t = c.trajectory;
-    if (t.window > 0.0 && t.window < d.time_step) fail(c, "trajectory.window", "is shorter than one time step");
-    const long total = d.moving_particles + d.frozen_particles;
-    for (auto id : t.particles)
-      if (id >= static_cast<std::uint64_t>(total))
-        fail(c, "trajectory.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
-                                            std::to_string(total - 1) + ")");
-    const double followed = t.particles.empty() ? static_cast<double>(d.moving_particles) : t.particles.size();
-    const double bytes = 48.0 * followed * static_cast<double>(t.samples);  // velocity + position, 6 doubles
-    if (bytes > 64e9)
-      fail(c, "trajectory.samples", "trajectory.h5 would hold " + std::to_string(bytes / 1e9) +
-                                        " GB; follow fewer particles or take fewer samples");
-  }
+  validate_fixed_positions(c);
+  validate_tracers(c, d);
+  validate_coarse_grain(c, d);
+  validate_trajectory(c, d);
+  return d;
 }
 
 }  // namespace grainflow::dem

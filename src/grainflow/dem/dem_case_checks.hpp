@@ -2,9 +2,11 @@
 #pragma once
 
 #include "grainflow/config/case_config.hpp"
+#include "grainflow/dem/derived_quantities.hpp"
 
 namespace grainflow::dem {
 
-void validate_dem_case(const CaseConfig& c);
+// Returns what it derived from the case, for the checks that follow (the observers' tables).
+DerivedQuantities validate_dem_case(const CaseConfig& c);
 
 }  // namespace grainflow::dem

@@ -54,17 +54,7 @@ class EdmdEngine {
   // The energy budget since the start (engine_api/energy_budget.hpp). Particles must be current (after
   // advance_to). Collisions' losses are measured in the frame of the wall or image met, so the
   // walls' and images' work is the lab-frame energy change beyond that loss: W . J per collision.
-  engine_api::EnergyBudget energy_budget() const {
-    engine_api::EnergyBudget b;
-    b.gravity_work = counters_.start_periodic_potential -
-                     engine_api::periodic_potential(s_.particles, s_.box, s_.gravity) + counters_.gravity_shift_work;
-    b.wall_work = counters_.wall_work;
-    b.boundary_work = counters_.boundary_work;
-    b.separation_work = counters_.separation_work;
-    b.change = engine_api::mechanical_energy(s_.particles, s_.box, s_.gravity) - counters_.start_energy;
-    b.dissipated = counters_.dissipated;
-    return b;
-  }
+  engine_api::EnergyBudget energy_budget() const;
 
   EdmdState& state() { return s_; }
   const EdmdState& state() const { return s_; }
@@ -126,22 +116,7 @@ class EdmdEngine {
 
   // The stalled clock's message (fault_checks.hpp): the last event's particles and those that
   // collided within the window, found by one pass over the last collision times.
-  [[noreturn, gnu::noinline, gnu::cold]] void report_stall(std::uint32_t i, long long window, double moved) const {
-    const ParticleStore& p = s_.particles;
-    Stall stall;
-    stall.time = s_.time;
-    stall.moved = moved;
-    stall.events = window;
-    stall.i = p.id[i];
-    if (event_[i].kind == Kind::pair) stall.j = p.id[event_[i].partner];
-    if (event_[i].kind == Kind::wall) stall.wall_face = s_.walls[event_[i].detail].face;
-    for (std::size_t k = 0; k < p.size(); ++k)
-      if (tc_.last_collision(k) >= stall_.window_start()) {
-        ++stall.collider_count;
-        if (stall.colliders.size() < 8) stall.colliders.push_back(p.id[k]);
-      }
-    throw RunError(stall_message(stall, s_));
-  }
+  [[noreturn, gnu::noinline, gnu::cold]] void report_stall(std::uint32_t i, long long window, double moved) const;
 
   // Brings every particle to time t (no event may lie before t) and copies positions and velocities
   // back into the particle store, where outputs read them.
@@ -162,44 +137,15 @@ class EdmdEngine {
     std::uint32_t partner_count = 0; // partner's trajectory counter when predicted
   };
 
-  void load_flights() {
-    ParticleStore& p = s_.particles;
-    flight_.assign(p.size(), Flight{});
-    rolling_.reset(p.size());
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      s_.box.wrap(p.position[i], p.image[i]);
-      flight_[i].x = p.position[i];
-      flight_[i].v = p.velocity[i];
-      flight_[i].clock = s_.time;
-    }
-  }
+  // Every particle's flight from the particle store, current now, none rolling.
+  void load_flights();
 
   // Cells at least a diameter wide; with a shrinking periodic width, 10% spare so the grid lasts.
-  void build_grid() {
-    const std::size_t n = s_.particles.size();
-    const double margin = s_.servo.enabled && s_.servo.scale_width ? 1.1 : 1.0;
-    // At most max(32768, 4 N) cells; on the list path max(64, 4 N), as every cell there holds as
-    // many slots as the fullest.
-    const double max_cells = std::max(use_lists_ ? 64.0 : 32768.0, 4.0 * static_cast<double>(n));
-    grid_.reset(s_.box, use_lists_ ? lists_.cell_width() : margin * max_diameter_, max_cells, n);
-    for (std::size_t i = 0; i < n; ++i) {
-      s_.box.wrap(flight_[i].x, s_.particles.image[i]);
-      grid_.insert(flight_, static_cast<int>(i), grid_.cell_of(s_.box, flight_[i].x));
-    }
-  }
+  void build_grid();
 
   // Stores the particles cell by cell (ids unchanged), so that neighbors sit close in memory: at
   // 10^5 particles and more, a random start order costs a cache miss per partner looked at.
-  void sort_by_cell() {
-    const std::size_t n = s_.particles.size();
-    std::vector<std::uint32_t> order;
-    order.reserve(n);
-    for (int c = 0; c < static_cast<int>(grid_.size()); ++c)
-      for (int j = grid_.head(c); j >= 0; j = flight_[j].next) order.push_back(static_cast<std::uint32_t>(j));
-    s_.particles.permute(order);
-    load_flights();
-    build_grid();
-  }
+  void sort_by_cell();
 
   // Lists serve where every flight is straight (neighbor_lists.hpp): no gravity, Lees–Edwards
   // boundaries or servo-controlled width.
@@ -641,3 +587,5 @@ class EdmdEngine {
 };
 
 }  // namespace grainflow::edmd
+
+#include "grainflow/edmd/edmd_engine_setup.hpp"

@@ -86,6 +86,9 @@ class Observer {
   }
   // Non-null while it wants every collision reported (the event-driven engine calls it).
   virtual engine_api::CollisionObserver* collision_observer() { return nullptr; }
+  // When its long-term averages took their first sample: NaN before that, and for an observer that
+  // keeps none. A run judges its steady state from when the averages began.
+  virtual double first_sample_time() const { return std::numeric_limits<double>::quiet_NaN(); }
 
   // Checkpoints: the state it accumulated; the case rebuilds the rest.
   virtual void serialize(io::StateArchive& ar) = 0;

@@ -37,7 +37,7 @@ class StripProfileObserver final : public Observer {
   // (time > output.average_start and collisions >= output.average_start_collisions).
   void sample(const Frame& now) override;
   // The time of the first sample taken, or NaN.
-  double first_sample_time() const { return first_sample_; }
+  double first_sample_time() const override { return first_sample_; }
 
   // profiles.csv, and the scalars into the summary; the warnings get what the user should know.
   void write(const Frame& last, OutputSink& out) override;

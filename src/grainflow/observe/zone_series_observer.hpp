@@ -1,10 +1,12 @@
 // zone_series.h5 of a soft-sphere run ([zone_series], Lan 1994 section 4.3): each zone's
 // instantaneous mean velocity and the floor's motion at a fixed interval, for spectra and the
-// floor cross-correlations of `grainflow analyze`.
+// floor cross-correlations of `grainflow analyze`. The observer owns its table: its keys (start,
+// samples, interval), their defaults and checks are its schema's, defined in its .cpp.
 #pragma once
 
 #include <optional>
 
+#include "grainflow/config/observer_schema.hpp"
 #include "grainflow/io/hdf5_file.hpp"
 #include "grainflow/observe/observer.hpp"
 #include "grainflow/observe/run_context.hpp"
@@ -14,6 +16,10 @@ namespace grainflow::observe {
 
 class ZoneSeriesObserver final : public Observer {
  public:
+  // [zone_series]: start (s; absent: output.average_start), samples (default 2048, at least 16),
+  // interval (s; 0: 1 / (20 f), f the drive's frequency along gravity), each stored as read.
+  static const ObserverSchema table;
+
   explicit ZoneSeriesObserver(const RunContext& run);
 
   std::string name() const override { return "zone_series"; }

@@ -19,6 +19,7 @@
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/flat_json_reader.hpp"
 #include "grainflow/io/json_writer.hpp"
+#include "grainflow/observe/zone_series_observer.hpp"
 
 namespace grainflow::run {
 namespace {
@@ -181,7 +182,7 @@ CaseConfig CalibrationRun::trial_case(double k1) const {
   // A trial only measures the overlap: no snapshots or sampled files, and time-series rows (where
   // the overlap monitor looks) on a grid that ends exactly at the end of the trial.
   c.trajectory.enabled = false;
-  c.zone_series.enabled = false;
+  c.observer_tables.erase(observe::ZoneSeriesObserver::table.table);
   c.output.snapshot_interval = 0.0;
   c.output.interval = c.run.duration / std::max(1.0, std::ceil(c.run.duration / c.output.interval - 1e-9));
   return c;

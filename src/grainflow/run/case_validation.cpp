@@ -1,6 +1,7 @@
 #include "grainflow/run/case_validation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "grainflow/config/case_checks.hpp"
@@ -9,6 +10,7 @@
 #include "grainflow/dem/neighbor_list.hpp"
 #include "grainflow/edmd/edmd_case_checks.hpp"
 #include "grainflow/particles/particle_store.hpp"
+#include "grainflow/run/observer_registry.hpp"
 
 namespace grainflow {
 namespace {
@@ -67,6 +69,13 @@ void validate_hard_particles_apart(const CaseConfig& c) {
                          "overlap: hard particles must start apart");
 }
 
+// Each observer that owns its table checks it against the run.
+void check_observer_tables(const ObserverCheckInputs& run) {
+  for (const ObserverSchema& schema : run::observer_schemas())
+    if (schema.check && run.c.observer_tables.has(schema.table))
+      schema.check(run.c.observer_tables.at(schema.table), run);
+}
+
 }  // namespace
 
 void validate_case(const CaseConfig& c) {
@@ -74,9 +83,16 @@ void validate_case(const CaseConfig& c) {
   if (c.engine.kind == "edmd") {
     edmd::validate_edmd_case(c);
     if (c.particles.init == "file") validate_hard_particles_apart(c);
+    long particles = 0;
+    for (const auto& s : c.species) particles += static_cast<long>(s.count);
+    // No time step; the first species' diameter, and gravity along x or y as the event-driven run takes it.
+    check_observer_tables({c, 0.0, c.species.front().diameter, std::fabs(c.gravity.x) > std::fabs(c.gravity.y) ? 0 : 1,
+                           particles});
     return;
   }
-  dem::validate_dem_case(c);
+  const dem::DerivedQuantities d = dem::validate_dem_case(c);
+  const long particles = d.moving_particles + d.frozen_particles;
+  check_observer_tables({c, d.time_step, d.reference_diameter, d.gravity_axis, particles});
 }
 
 }  // namespace grainflow

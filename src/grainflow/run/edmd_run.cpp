@@ -15,7 +15,6 @@
 #include "grainflow/run/observer_registry.hpp"
 #include "grainflow/run/run_support.hpp"
 #include "grainflow/run/steady_state_report.hpp"
-#include "grainflow/observe/strip_profile_observer.hpp"
 #include "grainflow/run/checkpointing.hpp"
 #include "grainflow/run/interrupt.hpp"
 #include "grainflow/parallel/communicator.hpp"
@@ -175,10 +174,11 @@ double EdmdRun::next_sample_time() const {
   return t;
 }
 
-// When the strip profiles began averaging (NaN before), for the convergence check.
+// When the long-term averages began (NaN before), for the convergence check: the first observer
+// that keeps averages (the strip profiles) says.
 double EdmdRun::first_profile_sample() const {
   for (const auto& o : observers)
-    if (const auto* p = dynamic_cast<const observe::StripProfileObserver*>(o.get())) return p->first_sample_time();
+    if (const double t = o->first_sample_time(); !std::isnan(t)) return t;
   return std::numeric_limits<double>::quiet_NaN();
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "grainflow/config/observer_schema.hpp"
 #include "grainflow/observe/observer.hpp"
 #include "grainflow/observe/run_context.hpp"
 
@@ -19,6 +20,10 @@ enum class EngineKind { dem, edmd };
 // initial state with every particle of the run (before any decomposition over MPI ranks).
 std::vector<std::unique_ptr<observe::Observer>> make_observers(EngineKind engine, const observe::RunContext& run,
                                                                const observe::Frame& start);
+
+// The schemas of the registered observers that own their case table, in registry order: the case
+// loader reads, checks and writes those tables through them.
+ObserverSchemas observer_schemas();
 
 // The names of the registered observers of `engine`, in order (docs and tests).
 std::vector<std::string> observer_names(EngineKind engine);
