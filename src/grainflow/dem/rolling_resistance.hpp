@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "grainflow/config/rolling_models.hpp"
 #include "grainflow/core/vec3.hpp"
 #include "grainflow/dem/contact_law.hpp"
 
@@ -29,7 +30,7 @@ struct ContactConfig;
 
 namespace grainflow::dem {
 
-enum class RollingModel : std::uint8_t { constant_torque, epsd };
+using RollingModel = grainflow::RollingModel;  // the registered models (config/rolling_models.hpp)
 
 struct RollingParams {
   RollingModel model = RollingModel::epsd;
@@ -66,6 +67,7 @@ struct RollingResistance {
     const Vec3 w = k.relative_spin - dot(k.relative_spin, k.normal) * k.normal;
     const double load = k.normal_force > 0.0 ? k.normal_force : 0.0;
     const double cap = p.friction * k.effective_radius * load;
+    if (p.model == RollingModel::none) return {};
     if (p.model == RollingModel::constant_torque) {
       const double speed = norm(w);
       return speed > 0.0 ? (-cap / speed) * w : Vec3{};
