@@ -170,7 +170,7 @@ TEST(CaseLoader, RollingResistanceKeysAreChecked) {
   // mu_r = 0 switches a model off (an override of a case with rolling resistance).
   EXPECT_EQ(load_case_from_string(with, kLabel, {"contact.rolling_friction=0"}).contact.rolling_model, "none");
   expect_input_error(replace(with, "rolling_friction = 0.1\n", "rolling_friction = 0.1\nrolling_model = \"cdt\"\n"),
-                     "contact.rolling_model", "must be");
+                     "contact.rolling_model", "unknown rolling model 'cdt' (registered: none, constant_torque, epsd)");
   expect_input_error(replace(with, "rolling_friction = 0.1\n",
                              "rolling_friction = 0.1\nrolling_model = \"constant_torque\"\nrolling_damping = 0.2\n"),
                      "contact.rolling_damping", "epsd");

@@ -10,6 +10,9 @@
 #include "grainflow/config/contact_schema.hpp"
 #include "grainflow/config/face_kinds.hpp"
 #include "grainflow/config/observer_schema.hpp"
+#include "grainflow/config/restitution_laws.hpp"
+#include "grainflow/config/rolling_models.hpp"
+#include "grainflow/config/wall_conditions.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/config/toml_reader.hpp"
 #include "grainflow/config/particle_csv.hpp"
@@ -180,9 +183,7 @@ void read_rolling_resistance(TomlReader& r, ContactConfig& k) {
   if (!(k.rolling_friction >= 0.0 && k.rolling_friction <= 1.0))
     r.fail("rolling_friction", "must lie in [0, 1] (the torque's lever arm is mu_r R*)");
   const bool rolling = k.rolling_friction > 0.0;
-  k.rolling_model = r.string("rolling_model", rolling ? "epsd" : "none");
-  if (k.rolling_model != "none" && k.rolling_model != "constant_torque" && k.rolling_model != "epsd")
-    r.fail("rolling_model", "must be \"none\", \"constant_torque\" or \"epsd\"");
+  k.rolling_model = r.registered_name("rolling_model", rolling_model_named, rolling ? "epsd" : "none");
   if (rolling && k.rolling_model == "none") r.fail("rolling_model", "is \"none\" but rolling_friction is given");
   if (!r.has("rolling_friction") && k.rolling_model != "none") r.fail("rolling_model", "needs rolling_friction > 0");
   for (const char* key : {"rolling_damping", "rolling_stiffness"})
@@ -225,9 +226,7 @@ void read_collision(TomlReader& top, CaseConfig& c) {
     auto& k = c.collision;
     k.restitution = r.number("restitution", k.restitution);
     if (!(k.restitution >= 0.0 && k.restitution <= 1.0)) r.fail("restitution", "must lie in [0, 1]");
-    k.restitution_law = r.string("restitution_law", k.restitution_law);
-    if (k.restitution_law != "constant" && k.restitution_law != "campbell")
-      r.fail("restitution_law", "must be \"constant\" or \"campbell\"");
+    k.restitution_law = r.registered_name("restitution_law", restitution_law_named, k.restitution_law);
     k.velocity_scale = r.number("velocity_scale", 0.0);
     if (k.velocity_scale < 0.0) r.fail("velocity_scale", "must not be negative");
     // Campbell's listing rolls a particle whose wall rebound is below 1e-4 sqrt(g R); without a
@@ -269,10 +268,8 @@ void read_walls(TomlReader& top, CaseConfig& c, ContactSchemas schemas) {
     TomlReader r = walls.table(kFaceNames[f]);
     WallConfig& w = c.walls[f];
     const bool edmd = c.engine.kind == "edmd";
-    w.condition = r.string("condition", "smooth");
     if (r.has("condition") && !edmd) r.fail("condition", "wall conditions are for the event-driven engine");
-    if (w.condition != "smooth" && w.condition != "rough" && w.condition != "no_slip")
-      r.fail("condition", "must be \"smooth\", \"rough\" or \"no_slip\"");
+    w.condition = r.registered_name("condition", wall_condition_named, "smooth");
     if (edmd) {
       // A hard wall may be perfectly plastic (e = 0).
       w.restitution = r.number("restitution", -1.0);

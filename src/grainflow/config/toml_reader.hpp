@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <set>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,18 @@ class TomlReader {
   std::int64_t integer(const std::string& key, std::int64_t fallback);
   bool boolean(const std::string& key, bool fallback);
   std::string string(const std::string& key, const std::string& fallback);
+  // A string that must be a registered name: `to_kind` is a registry's lookup (kind_registry.hpp),
+  // whose refusal of an unknown name (listing the registered ones) becomes this key's error.
+  template <class ToKind>
+  std::string registered_name(const std::string& key, ToKind to_kind, const std::string& fallback) {
+    std::string name = string(key, fallback);
+    try {
+      to_kind(name);
+    } catch (const std::invalid_argument& e) {
+      fail(key, e.what());
+    }
+    return name;
+  }
   Vec3 vec3(const std::string& key, const Vec3& fallback);
   Vec3 required_vec3(const std::string& key);
 

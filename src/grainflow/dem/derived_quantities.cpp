@@ -101,7 +101,7 @@ DerivedQuantities derive(const CaseConfig& c) {
     d.time_step = c.run.time_step;
     d.time_step_from_case = true;
   }
-  if (c.contact.rolling_model != "none") {
+  if (rolling_model_named(c.contact.rolling_model) != RollingModel::none) {
     const RollingParams rolling = rolling_params(c.contact, c.contact.rolling_friction, d.normal_stiffness);
     for (auto& line : describe_rolling(rolling, d.reference_mass, 0.5 * ref.diameter, d.time_step)) d.law_lines.push_back(line);
   }

@@ -13,7 +13,7 @@ DemEngineVariant make_engine(const CaseConfig& c, DemState state, int threads, c
     const typename Law::Params pair = Law::pair_params(c.contact, reference);
     std::vector<typename Law::Params> walls;
     for (const auto& wall : state.walls) walls.push_back(Law::wall_params(pair, c.walls[wall.face].contact, wall.friction));
-    if (c.contact.rolling_model == "none")
+    if (rolling_model_named(c.contact.rolling_model) == RollingModel::none)
       return DemEngineVariant(std::in_place_type<DemEngine<Law, false>>, std::move(state), pair, std::move(walls), threads,
                               c.run.sort_every, domain);
     RollingSetup rolling;

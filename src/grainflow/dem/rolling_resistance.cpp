@@ -10,7 +10,7 @@ namespace grainflow::dem {
 
 RollingParams rolling_params(const ContactConfig& contact, double friction, double normal_stiffness) {
   RollingParams p;
-  p.model = contact.rolling_model == "constant_torque" ? RollingModel::constant_torque : RollingModel::epsd;
+  p.model = rolling_model_named(contact.rolling_model);
   p.friction = friction;
   p.damping = contact.rolling_damping;
   p.stiffness_per_radius2 = contact.rolling_stiffness * normal_stiffness * friction * friction;
@@ -19,6 +19,10 @@ RollingParams rolling_params(const ContactConfig& contact, double friction, doub
 
 std::vector<CheckLine> describe_rolling(const RollingParams& p, double mass, double radius, double time_step) {
   std::vector<CheckLine> lines;
+  if (p.model == RollingModel::none) {
+    lines.push_back({"rolling resistance", "none"});
+    return lines;
+  }
   if (p.model == RollingModel::constant_torque) {
     lines.push_back({"rolling resistance", fmt::format("constant_torque, mu_r = {:.6g}: -mu_r R* F_n along the rolling", p.friction)});
     return lines;

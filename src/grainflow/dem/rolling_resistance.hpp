@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "grainflow/config/rolling_models.hpp"
 #include "grainflow/core/vec3.hpp"
 #include "grainflow/dem/contact_law.hpp"
 
@@ -29,7 +30,10 @@ struct ContactConfig;
 
 namespace grainflow::dem {
 
-enum class RollingModel : std::uint8_t { constant_torque, epsd };
+// The registered models (config/rolling_models.hpp). `none` never reaches the torque: make_engine
+// builds an engine without rolling contacts for it (a test of it here would change the force
+// loops' floating-point code, and with it long runs' results).
+using RollingModel = grainflow::RollingModel;
 
 struct RollingParams {
   RollingModel model = RollingModel::epsd;

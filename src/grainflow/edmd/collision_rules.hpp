@@ -8,13 +8,15 @@
 
 #include <cmath>
 
+#include "grainflow/config/restitution_laws.hpp"
+#include "grainflow/config/wall_conditions.hpp"
 #include "grainflow/core/vec3.hpp"
 
 namespace grainflow::edmd {
 
 // Normal restitution as a function of the normal impact speed.
 struct RestitutionLaw {
-  enum class Kind { constant, campbell };
+  using Kind = RestitutionLawKind;  // the registered laws (config/restitution_laws.hpp)
   Kind kind = Kind::constant;
   double value = 1.0;           // e (constant), or e far above elastic_speed
   double velocity_scale = 1.0;  // m/s, campbell: e = (1 + exp(-3 dv / velocity_scale)) / 2
@@ -59,12 +61,11 @@ inline Vec3 collide_pair(PairBody i, PairBody j, const Vec3& normal, const Resti
   return impulse;
 }
 
-// Wall conditions of Campbell's Couette cell and chute (listings WALLCL).
-enum class WallCondition {
-  rough,     // contact-point tangential velocity set to the wall's (tangential restitution 0)
-  no_slip,   // the particle centre takes the wall's tangential velocity, spin unchanged
-  smooth,    // tangential velocity untouched
-};
+// Wall conditions of Campbell's Couette cell and chute (listings WALLCL), registered in
+// config/wall_conditions.hpp: rough sets the contact point's tangential velocity to the wall's
+// (tangential restitution 0), no_slip gives the particle centre the wall's tangential velocity with
+// its spin unchanged, smooth leaves the tangential velocity untouched.
+using WallCondition = grainflow::WallCondition;
 
 // Resolves a collision of a particle with a wall of infinite mass moving at `wall_velocity`;
 // `normal` points from the wall into the box. Returns the impulse on the particle.

@@ -9,7 +9,9 @@
 #include "grainflow/config/couette_servo_rule.hpp"
 #include "grainflow/config/face_kinds.hpp"
 #include "grainflow/config/initial_flow.hpp"
+#include "grainflow/config/restitution_laws.hpp"
 #include "grainflow/config/species_sequence.hpp"
+#include "grainflow/config/wall_conditions.hpp"
 #include "grainflow/edmd/edmd_state.hpp"
 
 namespace grainflow::edmd {
@@ -171,7 +173,7 @@ EdmdState build_edmd_state(const CaseConfig& c) {
   s.gravity = c.gravity;
   s.species = c.species;
   RestitutionLaw law;
-  law.kind = c.collision.restitution_law == "campbell" ? RestitutionLaw::Kind::campbell : RestitutionLaw::Kind::constant;
+  law.kind = restitution_law_named(c.collision.restitution_law);
   law.value = c.collision.restitution;
   law.elastic_speed = c.collision.elastic_speed;
   law.velocity_scale = c.collision.velocity_scale;
@@ -193,8 +195,7 @@ EdmdState build_edmd_state(const CaseConfig& c) {
     wall.inward = face_is_high(f) ? -1.0 : 1.0;
     wall.position = face_is_high(f) ? c.domain.hi[wall.axis] : c.domain.lo[wall.axis];
     wall.velocity = w.velocity;
-    wall.condition = w.condition == "rough" ? WallCondition::rough
-                     : w.condition == "no_slip" ? WallCondition::no_slip : WallCondition::smooth;
+    wall.condition = wall_condition_named(w.condition);
     wall.restitution = law;
     wall.restitution.value = w.restitution >= 0.0 ? w.restitution : c.collision.wall_restitution;
     s.walls.push_back(wall);

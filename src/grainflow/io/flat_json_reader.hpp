@@ -1,7 +1,8 @@
-// Reads the scalar fields of one flat JSON object, such as a run's summary.json: numbers (kept as
-// written, so nothing is lost in a round trip), strings, booleans and nulls, in file order. Fields
-// whose values are arrays or objects are parsed and skipped. Anything that is not valid JSON, or
-// not an object at the top, is an error.
+// Reads JSON through nlohmann's parser. read_flat_json: the scalar fields of one object, such as a
+// run's summary.json: numbers (kept as written, so nothing is lost in a round trip), strings,
+// booleans and nulls, in file order; fields whose values are arrays or objects are parsed and
+// skipped. read_json: a whole value, nested ones included. Anything that is not valid JSON (or, for
+// the flat reader, not an object at the top) is an error.
 #pragma once
 
 #include <stdexcept>
@@ -9,6 +10,8 @@
 #include <string_view>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json_fwd.hpp>
 
 namespace grainflow::io {
 
@@ -30,10 +33,13 @@ class JsonParseError : public std::runtime_error {
 };
 
 // The scalar fields of the object in `text`. A key given twice keeps its first position and its
-// last value. Throws JsonParseError (with the byte offset) on malformed input.
+// last value. Throws JsonParseError (with the line and column) on malformed input.
 FlatJsonFields read_flat_json(std::string_view text);
 
-// The same for a file; throws JsonParseError when it cannot be read or parsed.
+// The same for a file; throws JsonParseError naming the file when it cannot be read or parsed.
 FlatJsonFields read_flat_json_file(const std::string& path);
+
+// The value in `text`, objects in file order; throws JsonParseError (with the line and column).
+nlohmann::ordered_json read_json(std::string_view text);
 
 }  // namespace grainflow::io

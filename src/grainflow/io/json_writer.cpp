@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <nlohmann/json.hpp>
+
 namespace grainflow::io {
 
 std::string json_quote(const std::string& text) {
@@ -26,28 +28,82 @@ std::string json_quote(const std::string& text) {
   return out + "\"";
 }
 
-void JsonObject::number(const std::string& key, double value) {
-  if (!std::isfinite(value)) {
-    entries_.emplace_back(key, "null");  // JSON has no NaN or Inf
-    return;
+namespace {
+
+void append_text(const nlohmann::ordered_json& value, std::string& out) {
+  using Type = nlohmann::ordered_json::value_t;
+  switch (value.type()) {
+    case Type::boolean: out += value.get<bool>() ? "true" : "false"; return;
+    case Type::number_integer: out += std::to_string(value.get<std::int64_t>()); return;
+    case Type::number_unsigned: out += std::to_string(value.get<std::uint64_t>()); return;
+    case Type::number_float: {
+      const double x = value.get<double>();
+      if (!std::isfinite(x)) break;  // null
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.10g", x);
+      out += buffer;
+      return;
+    }
+    case Type::string: out += json_quote(value.get_ref<const std::string&>()); return;
+    case Type::array: {
+      out += '[';
+      for (std::size_t i = 0; i < value.size(); ++i) {
+        if (i) out += ", ";
+        append_text(value[i], out);
+      }
+      out += ']';
+      return;
+    }
+    case Type::object: {
+      out += '{';
+      bool first = true;
+      for (const auto& [key, item] : value.items()) {
+        out += first ? "" : ", ";
+        first = false;
+        out += json_quote(key) + ": ";
+        append_text(item, out);
+      }
+      out += '}';
+      return;
+    }
+    default: break;  // null, and the binary and discarded values JSON text cannot hold
   }
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", value);
-  entries_.emplace_back(key, buffer);
+  out += "null";
 }
-void JsonObject::integer(const std::string& key, long long value) { entries_.emplace_back(key, std::to_string(value)); }
-void JsonObject::string(const std::string& key, const std::string& value) { entries_.emplace_back(key, json_quote(value)); }
-void JsonObject::boolean(const std::string& key, bool value) { entries_.emplace_back(key, value ? "true" : "false"); }
-void JsonObject::strings(const std::string& key, const std::vector<std::string>& values) {
-  std::string encoded = "[";
-  for (std::size_t i = 0; i < values.size(); ++i) encoded += (i ? ", " : "") + json_quote(values[i]);
-  entries_.emplace_back(key, encoded + "]");
+
+}  // namespace
+
+std::string json_text(const nlohmann::ordered_json& value) {
+  std::string out;
+  append_text(value, out);
+  return out;
 }
+
+JsonObject::JsonObject() : fields_(std::make_unique<nlohmann::ordered_json>(nlohmann::ordered_json::object())) {}
+JsonObject::~JsonObject() = default;
+JsonObject::JsonObject(JsonObject&&) noexcept = default;
+JsonObject& JsonObject::operator=(JsonObject&&) noexcept = default;
+
+void JsonObject::number(const std::string& key, double value) {
+  if (std::isfinite(value)) {
+    (*fields_)[key] = value;
+  } else {
+    (*fields_)[key] = nullptr;
+  }
+}
+void JsonObject::integer(const std::string& key, long long value) {
+  (*fields_)[key] = static_cast<std::int64_t>(value);
+}
+void JsonObject::string(const std::string& key, const std::string& value) { (*fields_)[key] = value; }
+void JsonObject::boolean(const std::string& key, bool value) { (*fields_)[key] = value; }
+void JsonObject::strings(const std::string& key, const std::vector<std::string>& values) { (*fields_)[key] = values; }
+void JsonObject::value(const std::string& key, const nlohmann::ordered_json& value) { (*fields_)[key] = value; }
 
 void JsonObject::write(std::ostream& out) const {
   out << "{\n";
-  for (std::size_t i = 0; i < entries_.size(); ++i)
-    out << "  " << json_quote(entries_[i].first) << ": " << entries_[i].second << (i + 1 < entries_.size() ? ",\n" : "\n");
+  std::size_t left = fields_->size();
+  for (const auto& [key, value] : fields_->items())
+    out << "  " << json_quote(key) << ": " << json_text(value) << (--left > 0 ? ",\n" : "\n");
   out << "}\n";
 }
 

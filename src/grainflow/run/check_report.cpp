@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "grainflow/config/restitution_laws.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/run/case_loader.hpp"
 
@@ -29,7 +30,7 @@ void print_edmd_check(const CaseConfig& c, std::ostream& out) {
   out << fmt::format("  particles                   {}\n", total);
   out << fmt::format("  packing fraction (box)      {:.6g}\n", solids / measure);
   out << fmt::format("  restitution                 {} ({})\n",
-                     k.restitution_law == "campbell" ? "campbell law" : fmt::format("{:.6g}", k.restitution),
+                     restitution_law_named(k.restitution_law) == RestitutionLawKind::campbell ? "campbell law" : fmt::format("{:.6g}", k.restitution),
                      k.restitution_law);
   for (int f = 0; f < 6; ++f) {
     if (c.domain.faces[f] != FaceKind::wall || face_axis(f) >= dim) continue;

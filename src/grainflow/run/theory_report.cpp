@@ -11,6 +11,8 @@
 
 #include "grainflow/run/run_support.hpp"
 #include "grainflow/run/case_loader.hpp"
+#include "grainflow/config/restitution_laws.hpp"
+#include "grainflow/config/wall_conditions.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/dem/contact_law_registry.hpp"
@@ -73,12 +75,12 @@ TheoryInputs theory_inputs(const CaseConfig& c) {
 
   const WallConfig& w = c.walls[floor];
   if (edmd) {
-    if (c.collision.restitution_law != "constant")
+    if (restitution_law_named(c.collision.restitution_law) != RestitutionLawKind::constant)
       fail("collision.restitution_law", "the theory needs a constant restitution coefficient, not the '" +
                                             c.collision.restitution_law + "' law");
     p.restitution = c.collision.restitution;
     p.floor_restitution = w.restitution >= 0.0 ? w.restitution : c.collision.wall_restitution;
-    if (c.collision.tangential_restitution != -1.0 || w.condition != "smooth")
+    if (c.collision.tangential_restitution != -1.0 || wall_condition_named(w.condition) != WallCondition::smooth)
       in.notes.push_back("rough collisions (collision.tangential_restitution or a rough floor) are treated as smooth");
   } else {
     // The contact law's closed forms: a head-on pair of reference spheres, and one against the
