@@ -56,7 +56,8 @@ std::string gas_case(long n) {
   const double side = std::cbrt(n * M_PI / 6.0 / 0.3);
   return "[domain]\nlo=[0,0,0]\nhi=[" + std::to_string(side) + "," + std::to_string(side) + "," + std::to_string(side) +
          "]\nboundary={x=\"periodic\",y=\"periodic\",z=\"periodic\"}\n[gravity]\nvector=[0,0,0]\n"
-         "[[species]]\nname=\"g\"\ndiameter=1.0\ndensity=1.0\ncount=" + std::to_string(n) +
+         "[[species]]\nname=\"g\"\ndiameter=1.0\ndensity=1.0\ncount=" +
+         std::to_string(n) +
          "\n[particles]\ninit=\"lattice\"\ninitial_temperature=1.0\nlattice_spacing=1.0\n"
          "[contact]\nmodel=\"linear_dashpot\"\nkn=2e5\ngamma_n=50\nfriction=0.5\n"
          "[run]\nduration=1\ntime_step=1e-4\nskin=0.1\n";

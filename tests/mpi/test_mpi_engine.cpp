@@ -62,7 +62,8 @@ density = 2490.0
 
 [particles]
 init = "file"
-file = ")" + (folder / "particles.csv").string() + R"("
+file = ")" + (folder / "particles.csv").string() +
+                           R"("
 
 [contact]
 k1 = 1.0e6

@@ -24,16 +24,20 @@ lo = [0.0, 0.0, 0.0]
 hi = [0.02, 0.02, 0.02]
 boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
 [gravity]
-vector = )" + std::string(gravity) + R"(
+vector = )" +
+         std::string(gravity) + R"(
 [[species]]
 name = "glass"
 diameter = 0.002
-density = )" + std::string(density) + R"(
+density = )" +
+         std::string(density) + R"(
 [particles]
 init = "file"
-file = ")" + file + R"("
+file = ")" +
+         file + R"("
 [contact]
-)" + contact + (wall.empty() ? "" : "[walls.ylo]\n" + wall) + R"(
+)" + contact +
+         (wall.empty() ? "" : "[walls.ylo]\n" + wall) + R"(
 [run]
 duration = 1.0
 )";

@@ -12,8 +12,8 @@ namespace grainflow::test {
 
 struct ElasticGas {
   int dimension = 2;
-  int per_side = 10;         // n: n^dim particles
-  double fraction = 0.3;     // packing (area / volume) fraction
+  int per_side = 10;      // n: n^dim particles
+  double fraction = 0.3;  // packing (area / volume) fraction
   double diameter = 1.0;
   double tangential = -1.0;  // tangential restitution: -1 smooth, +1 elastic rough
   bool walls = false;        // smooth elastic walls at ylo and yhi instead of a periodic y
@@ -62,7 +62,9 @@ duration = 1.0
                 g.dimension, length, length, g.dimension == 3 ? length : 1.0, g.walls ? "wall" : "periodic", g.diameter,
                 1.0 / particle, count, gas_spacing(g) / g.diameter * (1.0 - 1e-9) /* n sites fit despite rounding */,
                 g.seed, g.tangential,
-                g.walls ? "[walls.ylo]\nrestitution = 1.0\ncondition = \"smooth\"\n[walls.yhi]\nrestitution = 1.0\ncondition = \"smooth\"" : "");
+                g.walls ? "[walls.ylo]\nrestitution = 1.0\ncondition = \"smooth\"\n[walls.yhi]\nrestitution = "
+                          "1.0\ncondition = \"smooth\""
+                        : "");
   return text;
 }
 

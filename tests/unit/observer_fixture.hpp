@@ -34,7 +34,8 @@ struct ObserverFixture {
   std::filesystem::path dir;
 
   // A 10 x 10 x 10 mm box, periodic in x and z, gravity along -y, particles of 1 mm.
-  ObserverFixture() : dir(std::filesystem::path(testing::TempDir()) / ("grainflow_observer_" + std::to_string(::getpid()))) {
+  ObserverFixture()
+      : dir(std::filesystem::path(testing::TempDir()) / ("grainflow_observer_" + std::to_string(::getpid()))) {
     std::filesystem::create_directories(dir);
     c.path = "test.toml";
     c.domain.lo = {0.0, 0.0, 0.0};

@@ -14,7 +14,9 @@
 namespace grainflow::test {
 
 // cases/NAME under the source tree.
-inline std::string bundled_case(const std::string& name) { return std::string(GRAINFLOW_SOURCE_DIR) + "/cases/" + name; }
+inline std::string bundled_case(const std::string& name) {
+  return std::string(GRAINFLOW_SOURCE_DIR) + "/cases/" + name;
+}
 
 // The case at `path` with the one occurrence of `from` replaced by `to`, loaded.
 inline CaseConfig load_edited_case(const std::string& path, const std::string& from, const std::string& to) {

@@ -53,7 +53,8 @@ TEST(AnalysisBlockAverage, Ar1PlateauMatchesTheExactStandardError) {
     EXPECT_NEAR(b.standard_error, exact, 0.10 * exact) << phi;
     // The naive error is sigma / sqrt(n) to within its own 1/sqrt(2n) = 0.14% (5 sigma: 0.7%);
     // it underestimates by the factor sqrt((1 + phi)/(1 - phi)).
-    EXPECT_NEAR(b.naive_standard_error, sigma / std::sqrt(static_cast<double>(n)), 0.007 * sigma / std::sqrt(static_cast<double>(n)));
+    EXPECT_NEAR(b.naive_standard_error, sigma / std::sqrt(static_cast<double>(n)),
+                0.007 * sigma / std::sqrt(static_cast<double>(n)));
     // The mean is the arithmetic mean; the true mean 10 is within 4 exact standard errors.
     EXPECT_NEAR(b.mean, std::accumulate(x.begin(), x.end(), 0.0) / static_cast<double>(n), 1e-12);
     EXPECT_NEAR(b.mean, 10.0, 4.0 * exact);

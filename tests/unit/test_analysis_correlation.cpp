@@ -52,7 +52,9 @@ double sum_of_squares(const std::vector<double>& x) {
 // (FFT error grows like log m; eps = 2.2e-16, log2 m <= 12 here: ~3e-15 sum x^2); dividing by
 // n - k gives the bound below with a factor ~30 to spare. For k <= n/2 it is <= 2e-13 C(0)-scale,
 // i.e. the ~1e-12 relative agreement asked of the FFT route.
-double fft_tolerance(double squares, std::size_t n, std::size_t k) { return 1e-13 * squares / static_cast<double>(n - k); }
+double fft_tolerance(double squares, std::size_t n, std::size_t k) {
+  return 1e-13 * squares / static_cast<double>(n - k);
+}
 
 // A stationary smooth signal that can be evaluated at any real t: white noise w_j on the integers
 // convolved with a Gaussian of width s. Its autocorrelation is a Gaussian of width s sqrt(2), so a
@@ -107,7 +109,8 @@ TEST(AnalysisAutocorrelation, FftEqualsDirectSumOverAllLags) {
   const double squares = sum_of_squares(x);
   const std::vector<double> c = autocorrelation(x, n - 1);
   ASSERT_EQ(c.size(), n);
-  for (std::size_t k = 0; k < n; ++k) EXPECT_NEAR(c[k], direct_cross(x, x, static_cast<long>(k)), fft_tolerance(squares, n, k)) << k;
+  for (std::size_t k = 0; k < n; ++k)
+    EXPECT_NEAR(c[k], direct_cross(x, x, static_cast<long>(k)), fft_tolerance(squares, n, k)) << k;
 
   // Autocovariance: the series' mean removed first.
   double mean = 0.0;
@@ -137,8 +140,10 @@ TEST(AnalysisAutocorrelation, EnsembleWeightsEveryProductAlike) {
   }
   // Equal lengths: the plain mean of the per-series functions (eq. 3-2-6).
   const std::vector<std::vector<double>> equal = {series[0], gaussian_series(500, 0.0, rng)};
-  const auto pooled = autocorrelation(equal, 100), a = autocorrelation(equal[0], 100), b = autocorrelation(equal[1], 100);
-  for (std::size_t k = 0; k <= 100; ++k) EXPECT_NEAR(pooled[k], 0.5 * (a[k] + b[k]), 1e-13 * (std::fabs(a[0]) + std::fabs(b[0])));
+  const auto pooled = autocorrelation(equal, 100), a = autocorrelation(equal[0], 100),
+             b = autocorrelation(equal[1], 100);
+  for (std::size_t k = 0; k <= 100; ++k)
+    EXPECT_NEAR(pooled[k], 0.5 * (a[k] + b[k]), 1e-13 * (std::fabs(a[0]) + std::fabs(b[0])));
   EXPECT_THROW(autocorrelation(series, 64), std::invalid_argument);  // the third series is too short
 }
 
@@ -209,7 +214,8 @@ TEST(AnalysisCrossCorrelation, PeakAtTheEndsIsNotRefined) {
   // A symmetric peak stays on its sample; a parabola's vertex is found exactly.
   EXPECT_DOUBLE_EQ(lag_of_maximum(std::vector<double>{0.0, 1.0, 2.0, 1.0, 0.0}), 0.0);
   auto parabola = [](double k) { return 5.0 - (k - 0.3) * (k - 0.3); };
-  EXPECT_NEAR(lag_of_maximum(std::vector<double>{parabola(-2), parabola(-1), parabola(0), parabola(1), parabola(2)}), 0.3, 1e-14);
+  EXPECT_NEAR(lag_of_maximum(std::vector<double>{parabola(-2), parabola(-1), parabola(0), parabola(1), parabola(2)}),
+              0.3, 1e-14);
   EXPECT_THROW(lag_of_maximum(std::vector<double>{1.0, 2.0}), std::invalid_argument);
 }
 
@@ -232,7 +238,8 @@ TEST(AnalysisMeanSquareDisplacement, FftEqualsDirectSum) {
   const std::vector<double> msd = mean_square_displacement(x, max_lag);
   ASSERT_EQ(msd.size(), n);
   EXPECT_EQ(msd[0], 0.0);
-  for (std::size_t k = 1; k <= max_lag; ++k) EXPECT_NEAR(msd[k], direct_msd(x, k), 4.0 * fft_tolerance(spread, n, k)) << k;
+  for (std::size_t k = 1; k <= max_lag; ++k)
+    EXPECT_NEAR(msd[k], direct_msd(x, k), 4.0 * fft_tolerance(spread, n, k)) << k;
 
   // Ensemble of unequal lengths: every displacement weighted alike.
   std::vector<double> other(1200);
@@ -240,7 +247,8 @@ TEST(AnalysisMeanSquareDisplacement, FftEqualsDirectSum) {
   const std::vector<std::vector<double>> both = {x, other};
   const std::vector<double> pooled = mean_square_displacement(both, 500);
   for (std::size_t k = 1; k <= 500; ++k) {
-    const double a = direct_msd(x, k) * static_cast<double>(n - k), b = direct_msd(other, k) * static_cast<double>(other.size() - k);
+    const double a = direct_msd(x, k) * static_cast<double>(n - k),
+                 b = direct_msd(other, k) * static_cast<double>(other.size() - k);
     EXPECT_NEAR(pooled[k], (a + b) / static_cast<double>(n + other.size() - 2 * k), 4e-13 * spread / (n - k)) << k;
   }
   EXPECT_THROW(mean_square_displacement(other, 1200), std::invalid_argument);

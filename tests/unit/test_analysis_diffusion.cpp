@@ -201,7 +201,8 @@ TEST(AnalysisDiffusion, SavageDaiReproducesLanTable45) {
   EXPECT_NEAR(carnahan_starling_g0(0.44), 1.56 / (2.0 * 0.56 * 0.56 * 0.56), 1e-14);
   // Scalings: D ~ sqrt(T), ~ d, ~ 1/(1 + e).
   EXPECT_NEAR(savage_dai_diffusion(d, 4.0 * 0.7950, e, 0.44), 2.0 * savage_dai_diffusion(d, 0.7950, e, 0.44), 1e-15);
-  EXPECT_NEAR(savage_dai_diffusion(0.2, 0.7950, 0.0, 0.44), 2.0 * 1.9 * savage_dai_diffusion(d, 0.7950, e, 0.44), 1e-15);
+  EXPECT_NEAR(savage_dai_diffusion(0.2, 0.7950, 0.0, 0.44), 2.0 * 1.9 * savage_dai_diffusion(d, 0.7950, e, 0.44),
+              1e-15);
   EXPECT_THROW(savage_dai_diffusion(d, 1.0, e, 1.0), std::invalid_argument);
   EXPECT_THROW(savage_dai_diffusion(d, -1.0, e, 0.3), std::invalid_argument);
 }

@@ -27,12 +27,15 @@ std::vector<ProfileStrip> strips(int n, double depth, Nu&& nu, U&& u) {
 }  // namespace
 
 TEST(OpenChannel, UniformProfilesHaveUnitParameters) {
-  const auto p = open_channel_profile_parameters(strips(7, 3.0, [](double) { return 0.6; }, [](double) { return 2.5; }), 3.0);
+  const auto p = open_channel_profile_parameters(strips(
+                                                     7, 3.0, [](double) { return 0.6; }, [](double) { return 2.5; }),
+                                                 3.0);
   EXPECT_NEAR(p.mean_solids_fraction, 0.6, 1e-12);
   EXPECT_NEAR(p.depth_mean_velocity, 2.5, 1e-12);
   EXPECT_NEAR(p.gamma, 1.0, 1e-12);
   EXPECT_NEAR(p.Gamma, 1.0, 1e-12);
-  EXPECT_NEAR(critical_froude_number(p, std::cos(30.0 * M_PI / 180.0)), std::sqrt(std::cos(30.0 * M_PI / 180.0)), 1e-12);
+  EXPECT_NEAR(critical_froude_number(p, std::cos(30.0 * M_PI / 180.0)), std::sqrt(std::cos(30.0 * M_PI / 180.0)),
+              1e-12);
 }
 
 // u = U y/h with nu uniform: u_bar = U/2, gamma = int (2 eta)^2 = 4/3. nu = 2 nu_bar (1 - y/h):
@@ -41,10 +44,16 @@ TEST(OpenChannel, UniformProfilesHaveUnitParameters) {
 // sums are exact), so 1/n^2 bounds both deviations.
 TEST(OpenChannel, LinearProfilesMatchTheirIntegrals) {
   const int n = 50;
-  const auto shear = open_channel_profile_parameters(strips(n, 1.0, [](double) { return 0.5; }, [](double e) { return 3.0 * e; }), 1.0);
+  const auto shear =
+      open_channel_profile_parameters(strips(
+                                          n, 1.0, [](double) { return 0.5; }, [](double e) { return 3.0 * e; }),
+                                      1.0);
   EXPECT_NEAR(shear.depth_mean_velocity, 1.5, 1e-12);
   EXPECT_NEAR(shear.gamma, 4.0 / 3.0, 1.0 / (n * n));
-  const auto thinning = open_channel_profile_parameters(strips(n, 2.0, [](double e) { return 1.2 * (1.0 - e); }, [](double) { return 1.0; }), 2.0);
+  const auto thinning =
+      open_channel_profile_parameters(strips(
+                                          n, 2.0, [](double e) { return 1.2 * (1.0 - e); }, [](double) { return 1.0; }),
+                                      2.0);
   EXPECT_NEAR(thinning.mean_solids_fraction, 0.6, 1e-12);
   EXPECT_NEAR(thinning.Gamma, 2.0 / 3.0, 1.0 / (n * n));
   EXPECT_NEAR(thinning.gamma, 1.0, 1e-12);
@@ -52,7 +61,8 @@ TEST(OpenChannel, LinearProfilesMatchTheirIntegrals) {
 
 // The depth cuts a strip: only the part below it counts; strips above it not at all.
 TEST(OpenChannel, CountsOnlyWhatLiesBelowTheDepth) {
-  const std::vector<ProfileStrip> s{{0.0, 1.0, 0.5, 1.0}, {1.0, 2.0, 0.5, 1.0}, {2.0, 3.0, 0.9, 7.0}, {3.0, 4.0, 0.9, 7.0}};
+  const std::vector<ProfileStrip> s{
+      {0.0, 1.0, 0.5, 1.0}, {1.0, 2.0, 0.5, 1.0}, {2.0, 3.0, 0.9, 7.0}, {3.0, 4.0, 0.9, 7.0}};
   const auto p = open_channel_profile_parameters(s, 2.5);
   // nu_bar = (0.5 * 2 + 0.9 * 0.5) / 2.5; u_bar = (1 * 2 + 7 * 0.5) / 2.5.
   EXPECT_NEAR(p.mean_solids_fraction, 1.45 / 2.5, 1e-12);

@@ -59,7 +59,8 @@ TEST(AnalysisWelchPsd, SinusoidInNoisePeaksAtItsFrequency) {
   EXPECT_DOUBLE_EQ(s.frequency.back(), 100.0);  // Nyquist
   EXPECT_EQ(s.segments, (n - segment) / (segment / 2) + 1);
   EXPECT_LE(std::fabs(peak_frequency(s) - f0), s.resolution);
-  std::printf("[ PSD      ] peak at %.4f Hz for a 7 Hz sinusoid (bin width %.4f Hz)\n", peak_frequency(s), s.resolution);
+  std::printf("[ PSD      ] peak at %.4f Hz for a 7 Hz sinusoid (bin width %.4f Hz)\n", peak_frequency(s),
+              s.resolution);
 
   // Parseval over many segments. The integral is the window-weighted mean square of the
   // mean-removed segments: the same samples as the plain variance, weighted alike except in the

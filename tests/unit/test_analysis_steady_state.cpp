@@ -91,7 +91,8 @@ TEST(SteadyState, StationarySeriesIsSteadyFromTheStart) {
   // An elastic gas's kinetic energy: constant but for round-off (1e-13 relative), which has its own
   // "trend" many of its own standard errors long. Still steady from the start.
   std::vector<double> elastic(200);
-  for (std::size_t i = 0; i < elastic.size(); ++i) elastic[i] = 3.0 * (1.0 + 1e-13 * static_cast<double>(i % 7) + 2e-14 * i);
+  for (std::size_t i = 0; i < elastic.size(); ++i)
+    elastic[i] = 3.0 * (1.0 + 1e-13 * static_cast<double>(i % 7) + 2e-14 * i);
   EXPECT_EQ(detect_steady_state(times(200, 1.0), elastic).steady_from, 0.0);
   // A real drift of 1e-6 over the series is still caught in a noiseless series.
   std::vector<double> creeping(200);

@@ -79,7 +79,8 @@ void expect_input_error(const std::string& text, const std::string& key, const s
     const std::string what = e.what();
     EXPECT_EQ(e.key(), key) << what;
     EXPECT_NE(e.file().find(file_part), std::string::npos) << what;
-    EXPECT_NE(e.reason().find(reason_part), std::string::npos) << "reason '" << e.reason() << "' lacks '" << reason_part << "'";
+    EXPECT_NE(e.reason().find(reason_part), std::string::npos)
+        << "reason '" << e.reason() << "' lacks '" << reason_part << "'";
     // The message a user sees carries all three.
     EXPECT_NE(what.find(kLabel), std::string::npos) << what;
     EXPECT_NE(what.find(key), std::string::npos) << what;
@@ -113,8 +114,8 @@ TEST(CaseLoader, MinimalCaseLoadsWithItsValuesAndDefaults) {
   EXPECT_EQ(c.particles.seed, 3u);
   EXPECT_FALSE(c.drive.enabled);
   EXPECT_DOUBLE_EQ(c.run.duration, 0.01);
-  EXPECT_DOUBLE_EQ(c.run.time_step, 0.0);   // default: eq. (2-5-4)
-  EXPECT_EQ(c.run.collision_steps, 15);     // default n
+  EXPECT_DOUBLE_EQ(c.run.time_step, 0.0);  // default: eq. (2-5-4)
+  EXPECT_EQ(c.run.collision_steps, 15);    // default n
 }
 
 TEST(CaseLoader, UnknownKeysAreErrorsAtEveryLevel) {
@@ -122,18 +123,20 @@ TEST(CaseLoader, UnknownKeysAreErrorsAtEveryLevel) {
   expect_input_error(replace(kMinimal, "k1 = 1.0e6", "k1 = 1.0e6\nk11 = 2.0e6"), "contact.k11", "unknown key");
   expect_input_error(replace(kMinimal, "friction = 0.3", "friction = 0.3\nrestitutio = 0.5"), "walls.ylo.restitutio",
                      "unknown key");
-  expect_input_error(replace(kMinimal, "count = 20", "count = 20\ncolour = \"red\""), "species.0.colour", "unknown key");
+  expect_input_error(replace(kMinimal, "count = 20", "count = 20\ncolour = \"red\""), "species.0.colour",
+                     "unknown key");
   expect_input_error(replace(kMinimal, "z = \"periodic\" }", "z = \"periodic\", w = \"wall\" }"), "domain.boundary.w",
                      "unknown key");
 }
 
 TEST(CaseLoader, WrongTypesAreErrors) {
-  expect_input_error(replace(kMinimal, "diameter = 0.003", "diameter = \"0.003\""), "species.0.diameter", "expected a number");
+  expect_input_error(replace(kMinimal, "diameter = 0.003", "diameter = \"0.003\""), "species.0.diameter",
+                     "expected a number");
   expect_input_error(replace(kMinimal, "count = 20", "count = 20.5"), "species.0.count", "expected an integer");
   expect_input_error(replace(kMinimal, "hi = [0.02, 0.05, 0.02]", "hi = [0.02, 0.05]"), "domain.hi", "3 numbers");
   expect_input_error(replace(kMinimal, "kind = \"dem\"", "kind = 1"), "engine.kind", "expected a string");
-  expect_input_error(replace(kMinimal, "[walls.ylo]", "[walls.ylo]\nvelocity = [0.0, \"a\", 0.0]"), "walls.ylo.velocity",
-                     "3 numbers");
+  expect_input_error(replace(kMinimal, "[walls.ylo]", "[walls.ylo]\nvelocity = [0.0, \"a\", 0.0]"),
+                     "walls.ylo.velocity", "3 numbers");
 }
 
 TEST(CaseLoader, MissingRequiredKeysAreErrors) {
@@ -146,8 +149,8 @@ TEST(CaseLoader, MissingRequiredKeysAreErrors) {
 
 TEST(CaseLoader, RestitutionMustLieInZeroToOne) {
   for (const char* bad : {"0.0", "-0.1", "1.5"}) {
-    expect_input_error(replace(kMinimal, "restitution = 0.9", std::string("restitution = ") + bad), "contact.restitution",
-                       "(0, 1]");
+    expect_input_error(replace(kMinimal, "restitution = 0.9", std::string("restitution = ") + bad),
+                       "contact.restitution", "(0, 1]");
     expect_input_error(replace(kMinimal, "restitution = 0.8", std::string("restitution = ") + bad),
                        "walls.ylo.restitution", "(0, 1]");
   }
@@ -163,8 +166,9 @@ TEST(CaseLoader, RollingResistanceKeysAreChecked) {
   EXPECT_EQ(c.contact.rolling_stiffness, 2.25);
   EXPECT_EQ(load_case_from_string(kMinimal, kLabel).contact.rolling_model, "none");
   for (const char* bad : {"-0.1", "1.5"})
-    expect_input_error(replace(kMinimal, "friction = 0.5\n", std::string("friction = 0.5\nrolling_friction = ") + bad + "\n"),
-                       "contact.rolling_friction", "[0, 1]");
+    expect_input_error(
+        replace(kMinimal, "friction = 0.5\n", std::string("friction = 0.5\nrolling_friction = ") + bad + "\n"),
+        "contact.rolling_friction", "[0, 1]");
   expect_input_error(replace(kMinimal, "friction = 0.5\n", "friction = 0.5\nrolling_model = \"epsd\"\n"),
                      "contact.rolling_model", "needs rolling_friction");
   // mu_r = 0 switches a model off (an override of a case with rolling resistance).
@@ -180,7 +184,9 @@ TEST(CaseLoader, RollingResistanceKeysAreChecked) {
                      "contact.rolling_stiffness", "positive");
   // A wall's own mu_r, only where the particles have a model.
   EXPECT_EQ(load_case_from_string(replace(with, "friction = 0.3\n", "friction = 0.3\nrolling_friction = 0.2\n"), kLabel)
-                .walls[2].rolling_friction, 0.2);
+                .walls[2]
+                .rolling_friction,
+            0.2);
   expect_input_error(replace(kMinimal, "friction = 0.3\n", "friction = 0.3\nrolling_friction = 0.2\n"),
                      "walls.ylo.rolling_friction", "contact.rolling_friction");
 }
@@ -200,15 +206,17 @@ TEST(CaseLoader, ParticlesThatCannotFitAreErrors) {
   // Random placement: 1200 spheres of 1.41e-8 m^3 in 2e-5 m^3 is a solids fraction of 0.85.
   expect_input_error(replace(kMinimal, "count = 20", "count = 1200"), "species.count", "placement region");
   // The same in a small placement region: 20 spheres in 6e-3 x 6e-3 x 6e-3 m^3 fill 1.31.
-  expect_input_error(replace(kMinimal, "seed = 3", "seed = 3\nregion_lo = [0.0, 0.0, 0.0]\nregion_hi = [0.006, 0.006, 0.006]"),
-                     "species.count", "placement region");
+  expect_input_error(
+      replace(kMinimal, "seed = 3", "seed = 3\nregion_lo = [0.0, 0.0, 0.0]\nregion_hi = [0.006, 0.006, 0.006]"),
+      "species.count", "placement region");
   // Lattice: floor(0.02 / 0.00306)^2 floor(0.05 / 0.00306) = 6 x 6 x 16 = 576 sites; 577 do not fit.
   const std::string lattice = replace(kMinimal, "init = \"random\"", "init = \"lattice\"");
   EXPECT_NO_THROW(load_case_from_string(replace(lattice, "count = 20", "count = 576"), kLabel));
   expect_input_error(replace(lattice, "count = 20", "count = 577"), "species.count", "lattice sites");
   // A placement region reaching outside the box.
-  expect_input_error(replace(kMinimal, "seed = 3", "seed = 3\nregion_lo = [0.0, -0.01, 0.0]\nregion_hi = [0.02, 0.03, 0.02]"),
-                     "particles.region_lo", "inside the domain");
+  expect_input_error(
+      replace(kMinimal, "seed = 3", "seed = 3\nregion_lo = [0.0, -0.01, 0.0]\nregion_hi = [0.02, 0.03, 0.02]"),
+      "particles.region_lo", "inside the domain");
 }
 
 TEST(CaseLoader, TimeStepTooLargeForTheContactIsAnError) {
@@ -227,9 +235,10 @@ TEST(CaseLoader, TimeStepTooLargeForTheContactIsAnError) {
   expect_input_error(with_step(1.0e-3), "run.time_step", "steps");
   // Through n of eq. (2-5-4): dt = 2 t_r / n gives n (1 + e) / (2 e) steps per contact, so n = 5
   // gives 5.28 (valid) and n = 4 gives 4.22 (refused).
-  EXPECT_NO_THROW(load_case_from_string(replace(kMinimal, "duration = 0.01", "duration = 0.01\ncollision_steps = 5"), kLabel));
-  expect_input_error(replace(kMinimal, "duration = 0.01", "duration = 0.01\ncollision_steps = 4"), "run.collision_steps",
-                     "steps");
+  EXPECT_NO_THROW(
+      load_case_from_string(replace(kMinimal, "duration = 0.01", "duration = 0.01\ncollision_steps = 5"), kLabel));
+  expect_input_error(replace(kMinimal, "duration = 0.01", "duration = 0.01\ncollision_steps = 4"),
+                     "run.collision_steps", "steps");
 }
 
 TEST(CaseLoader, DriveOnAPeriodicOrOpenFaceIsAnError) {
@@ -327,7 +336,9 @@ TEST(CaseLoader, BumpyWallVerdictMatchesTheBuiltGeometry) {
       } catch (const InputError& e) {
         ++refused;
         EXPECT_EQ(e.key(), "walls.ylo.spacing") << lattice << " s = " << spacing << ": " << e.what();
-        verdict = e.reason().find("overlap") != std::string::npos ? "overlap" : e.reason().find("through") != std::string::npos ? "through" : e.reason();
+        verdict = e.reason().find("overlap") != std::string::npos   ? "overlap"
+                  : e.reason().find("through") != std::string::npos ? "through"
+                                                                    : e.reason();
       }
       CaseConfig c = base;
       c.walls[2].spacing = spacing;
@@ -342,10 +353,8 @@ TEST(CaseLoader, BumpyWallVerdictMatchesTheBuiltGeometry) {
       }
       if (std::fabs(g.largest_hole - reach) < grid_error) continue;  // too close to the limit to judge
       ++judged;
-      if (g.largest_hole >= reach)
-        EXPECT_EQ(verdict, "through") << where << "; a 3 mm sphere falls through";
-      else
-        EXPECT_EQ(verdict, "accepted") << where << "; no 3 mm sphere passes";
+      if (g.largest_hole >= reach) EXPECT_EQ(verdict, "through") << where << "; a 3 mm sphere falls through";
+      else EXPECT_EQ(verdict, "accepted") << where << "; no 3 mm sphere passes";
     }
   }
   EXPECT_GT(accepted, 5);
@@ -354,10 +363,10 @@ TEST(CaseLoader, BumpyWallVerdictMatchesTheBuiltGeometry) {
 }
 
 TEST(CaseLoader, SetOverridesChangeValues) {
-  const CaseConfig c = load_case_from_string(
-      kMinimal, kLabel,
-      {"species.0.count=7", "run.collision_steps=20", "domain.boundary.y=[\"wall\", \"wall\"]", "particles.seed=11",
-       "contact.friction=0.25", "species.0.frozen=false"});
+  const CaseConfig c =
+      load_case_from_string(kMinimal, kLabel,
+                            {"species.0.count=7", "run.collision_steps=20", "domain.boundary.y=[\"wall\", \"wall\"]",
+                             "particles.seed=11", "contact.friction=0.25", "species.0.frozen=false"});
   EXPECT_EQ(c.species[0].count, 7);  // numeric path segments index arrays of tables
   EXPECT_EQ(c.run.collision_steps, 20);
   EXPECT_EQ(c.domain.faces[3], FaceKind::wall);
@@ -368,8 +377,8 @@ TEST(CaseLoader, SetOverridesChangeValues) {
   const CaseConfig k = load_case_from_string(kMinimal, kLabel, {"contact.k1=2e6"});
   EXPECT_DOUBLE_EQ(k.contact.parameters.at("k1"), 2e6);
   // A table that the file does not have is created by --set (here a whole drive).
-  const CaseConfig d = load_case_from_string(kMinimal, kLabel,
-                                             {"drive.amplitude=[0, 0.001, 0]", "drive.frequency=[0, 30, 0]", "drive.start=0.5"});
+  const CaseConfig d = load_case_from_string(
+      kMinimal, kLabel, {"drive.amplitude=[0, 0.001, 0]", "drive.frequency=[0, 30, 0]", "drive.start=0.5"});
   EXPECT_TRUE(d.drive.enabled);
   EXPECT_DOUBLE_EQ(d.drive.start, 0.5);
   EXPECT_DOUBLE_EQ(d.drive.frequency.y, 30.0);
@@ -401,7 +410,8 @@ TEST(CaseLoader, TomlSyntaxErrorReportsTheLine) {
   } catch (const InputError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find(kLabel), std::string::npos) << what;
-    EXPECT_NE(what.find("line " + std::to_string(line)), std::string::npos) << what << " (expected line " << line << ")";
+    EXPECT_NE(what.find("line " + std::to_string(line)), std::string::npos)
+        << what << " (expected line " << line << ")";
   }
 }
 
@@ -421,7 +431,8 @@ kind = "edmd"
 dimension = 3
 [domain]
 lo = [0.0, 0.0, 0.0]
-hi = )" + hi + R"(
+hi = )" + hi +
+         R"(
 boundary = { x = "periodic", y = "periodic", z = "periodic" }
 [[species]]
 name = "sphere"
@@ -449,7 +460,8 @@ TEST(CaseLoader, CoarseGrainKeysAreChecked) {
   EXPECT_EQ(c.coarse_grain.grid({0.02, 0.05, 0.02}, 0.003, 3), (std::array<int, 3>{14, 34, 14}));
   expect_input_error(with + "kernel = \"box\"\n", "coarse_grain.kernel", "must be");
   expect_input_error(with + "cutoff = 0.004\n", "coarse_grain.cutoff", "belongs to kernel = \"lucy\"");
-  expect_input_error(with + "kernel = \"lucy\"\nwidth = 0.004\n", "coarse_grain.width", "belongs to kernel = \"gaussian\"");
+  expect_input_error(with + "kernel = \"lucy\"\nwidth = 0.004\n", "coarse_grain.width",
+                     "belongs to kernel = \"gaussian\"");
   expect_input_error(with + "width = -1.0\n", "coarse_grain.width", "positive");
   expect_input_error(with + "cells = [4, 4]\n", "coarse_grain.cells", "three cell counts");
   expect_input_error(with + "cells = [4, 0, 4]\n", "coarse_grain.cells", "[1, 100000]");
@@ -466,8 +478,8 @@ TEST(CaseLoader, CoarseGrainKeysAreChecked) {
 TEST(CaseLoader, HugeLatticeRegionCountsItsSitesWithoutOverflow) {
   EXPECT_NO_THROW(load_case_from_string(sphere_lattice_case("[1.0e8, 1.0e8, 1.0e8]"), kLabel));
   // The soft-sphere engine's check: 3 mm spheres on a lattice in a 300 km cube (1e8 diameters).
-  const std::string dem = replace(replace(kMinimal, "init = \"random\"", "init = \"lattice\""), "hi = [0.02, 0.05, 0.02]",
-                                  "hi = [3.0e5, 3.0e5, 3.0e5]");
+  const std::string dem = replace(replace(kMinimal, "init = \"random\"", "init = \"lattice\""),
+                                  "hi = [0.02, 0.05, 0.02]", "hi = [3.0e5, 3.0e5, 3.0e5]");
   EXPECT_NO_THROW(load_case_from_string(dem, kLabel));
 }
 
@@ -485,7 +497,8 @@ TEST(CaseLoader, DemDiscsRefuseWhatWouldLeaveThePlane) {
   // A disc of 3 mm at 2490 kg/m^2: its mass is density x area.
   EXPECT_DOUBLE_EQ(c.species[0].mass(2), 2490.0 * M_PI * 0.0015 * 0.0015);
   expect_input_error(replace(discs, "z = \"periodic\"", "z = \"wall\""), "domain.boundary", "no walls along z");
-  expect_input_error(replace(discs, "[0.0, -9.81, 0.0]", "[0.0, -9.81, 1.0]"), "gravity.vector", "z component must be 0");
+  expect_input_error(replace(discs, "[0.0, -9.81, 0.0]", "[0.0, -9.81, 1.0]"), "gravity.vector",
+                     "z component must be 0");
   expect_input_error(replace(discs, "[walls.ylo]", "[walls.ylo]\nvelocity = [0.0, 0.0, 0.1]"), "walls.ylo.velocity",
                      "z component must be 0");
   expect_input_error(replace(replace(discs, "y = [\"wall\", \"open\"]", "y = [\"bumpy\", \"open\"]"), "[walls.ylo]",
@@ -526,7 +539,8 @@ region_hi = [0.02, 0.0045, 0.02]
   EXPECT_EQ(in_base, 30);
   expect_input_error(replace(base, "region_hi = [0.02, 0.0045, 0.02]\n", ""), "species.1.region_hi",
                      "needs both region_lo and region_hi");
-  expect_input_error(replace(base, "init = \"random\"", "init = \"lattice\""), "species.region_lo", "init = \"random\"");
+  expect_input_error(replace(base, "init = \"random\"", "init = \"lattice\""), "species.region_lo",
+                     "init = \"random\"");
   expect_input_error(replace(base, "region_hi = [0.02, 0.0045, 0.02]", "region_hi = [0.02, 0.0025, 0.02]"),
                      "species.region_hi", "wider than the largest diameter");
 
@@ -535,8 +549,8 @@ region_hi = [0.02, 0.0045, 0.02]
                                       "[walls.ylo]\nrestitution = 0.8\nfriction = 0.3\n", "") +
                               "\n[lees_edwards]\nshear_rate = 100.0\n";
   EXPECT_EQ(load_case_from_string(sheared, kLabel).lees_edwards_rate, 100.0);
-  expect_input_error(replace(sheared, "[0.0, 0.0, 0.0]\n\n[[species]]", "[0.0, -9.81, 0.0]\n\n[[species]]"), "gravity.vector",
-                     "only act along z");
+  expect_input_error(replace(sheared, "[0.0, 0.0, 0.0]\n\n[[species]]", "[0.0, -9.81, 0.0]\n\n[[species]]"),
+                     "gravity.vector", "only act along z");
   expect_input_error(replace(sheared, "hi = [0.02, 0.05, 0.02]", "hi = [0.012, 0.05, 0.02]"), "domain.hi",
                      "4 list cutoffs");
   expect_input_error(sheared + "\n[coarse_grain]\n", "coarse_grain", "Lees-Edwards");

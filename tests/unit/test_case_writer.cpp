@@ -191,24 +191,29 @@ TEST(CaseWriter, TheLammpsBenchmarkCasesSurviveTheRoundTrip) {
 TEST(CaseWriter, KeysTheBundledCasesLeaveAtTheirDefaults) {
   expect_round_trip(load_case_from_string(kDemEverything, "everything.toml"));
   // --set overrides are baked in.
-  const CaseConfig set = load_case_from_string(kDemEverything, "everything.toml", {"contact.friction=0.1", "run.sort_every=3"});
+  const CaseConfig set =
+      load_case_from_string(kDemEverything, "everything.toml", {"contact.friction=0.1", "run.sort_every=3"});
   expect_round_trip(set);
   EXPECT_NE(write_case_toml(set).find("friction = 0.1\n"), std::string::npos);
   // The rotary preset (its phases fixed) and the linear dashpot with a wall damping.
-  const std::string rotary = replace(replace(kDemEverything, "amplitude = [0.0001, 0.002, 0.0]\nfrequency = [20.0, 25.0, 0.0]\nphase = [0.5, 0.0, 0.0]",
-                                             "preset = \"rotary\"\namplitude = [0.001, 0.001, 0.001]\nfrequency = [20.0, 20.0, 20.0]"),
-                                     "k1 = 1.0e6\nrestitution = 0.85\nratk = 0.7", "model = \"linear_dashpot\"\nkn = 2.0e5\ngamma_n = 300.0");
-  expect_round_trip(load_case_from_string(replace(rotary, "restitution = 0.8\nfriction = 0.3", "gamma_n = 200.0\nfriction = 0.3"),
-                                          "rotary.toml"));
-  // Lucy's kernel, sized by its cutoff, on the default grid.
+  const std::string rotary =
+      replace(replace(kDemEverything,
+                      "amplitude = [0.0001, 0.002, 0.0]\nfrequency = [20.0, 25.0, 0.0]\nphase = [0.5, 0.0, 0.0]",
+                      "preset = \"rotary\"\namplitude = [0.001, 0.001, 0.001]\nfrequency = [20.0, 20.0, 20.0]"),
+              "k1 = 1.0e6\nrestitution = 0.85\nratk = 0.7", "model = \"linear_dashpot\"\nkn = 2.0e5\ngamma_n = 300.0");
   expect_round_trip(load_case_from_string(
-      replace(kDemEverything, "kernel = \"gaussian\"\nwidth = 0.0025\ncells = [5, 25, 5]", "kernel = \"lucy\"\ncutoff = 0.004"),
-      "lucy.toml"));
+      replace(rotary, "restitution = 0.8\nfriction = 0.3", "gamma_n = 200.0\nfriction = 0.3"), "rotary.toml"));
+  // Lucy's kernel, sized by its cutoff, on the default grid.
+  expect_round_trip(
+      load_case_from_string(replace(kDemEverything, "kernel = \"gaussian\"\nwidth = 0.0025\ncells = [5, 25, 5]",
+                                    "kernel = \"lucy\"\ncutoff = 0.004"),
+                            "lucy.toml"));
 }
 
 TEST(CaseWriter, DoublesAreWrittenExactly) {
   // Values with no short decimal form must come back bit for bit (shortest round-trip digits).
   const std::string text = replace(kDemEverything, "restitution = 0.85", "restitution = 0.8500000000000001");
   const CaseConfig c = load_case_from_string(text, "exact.toml");
-  EXPECT_EQ(load_case_from_string(write_case_toml(c), "again.toml").contact.parameters.at("restitution"), 0.8500000000000001);
+  EXPECT_EQ(load_case_from_string(write_case_toml(c), "again.toml").contact.parameters.at("restitution"),
+            0.8500000000000001);
 }

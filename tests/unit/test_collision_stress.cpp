@@ -79,7 +79,9 @@ class Recorder : public CollisionObserver {
     e_.set_observer(nullptr);
   }
 
-  std::vector<StripStress> strips(const Vec3& top_row = {}) const { return stress_.averages(e_.state().gravity, top_row); }
+  std::vector<StripStress> strips(const Vec3& top_row = {}) const {
+    return stress_.averages(e_.state().gravity, top_row);
+  }
   std::vector<observe::WallLoad> walls() const { return walls_.averages(); }
   double virial() const { return e_.counters().virial - virial_start_; }
   const StressProfile& stress() const { return stress_; }
@@ -214,7 +216,8 @@ TEST(StressProfileShares, KineticPartAboutTheLongTermStripMean) {
   p.resize(2);
   p.mass = {1.0, 3.0};
   p.position = {{0.5, 2.2, 0.0}, {1.5, 2.9, 0.0}};
-  const std::vector<std::vector<Vec3>> samples = {{{1.0, 0.0, 0.0}, {-1.0, 2.0, 0.0}}, {{3.0, 0.0, 0.0}, {-1.0, 2.0, 0.0}}};
+  const std::vector<std::vector<Vec3>> samples = {{{1.0, 0.0, 0.0}, {-1.0, 2.0, 0.0}},
+                                                  {{3.0, 0.0, 0.0}, {-1.0, 2.0, 0.0}}};
   p.velocity = samples[0];
   StressProfile sp(4);
   sp.begin(grid, p, 0.0);
@@ -352,7 +355,8 @@ TEST(CollisionStress, GasAtRestPressesOnItsWallsWithItsPressure) {
     for (const auto& k : s)
       EXPECT_NEAR(k.total[YY], w.normal_stress, 4.0 * std::hypot(k.total_error[YY], w.normal_stress_error));
     for (int k : {3, 4})  // the middle strips, away from the walls' layering: isotropic
-      EXPECT_NEAR(0.5 * trace2(s[k].total), w.normal_stress, 4.0 * std::hypot(s[k].total_error[XX], w.normal_stress_error));
+      EXPECT_NEAR(0.5 * trace2(s[k].total), w.normal_stress,
+                  4.0 * std::hypot(s[k].total_error[XX], w.normal_stress_error));
   }
 }
 
@@ -410,9 +414,10 @@ TEST(CollisionObserver, ReportsHeadOnAndWallCollisionsAsWorkedOut) {
   // (0.3, -1)) hits the rough floor (e_w = 0.8) at t = 0.5 at x = 8.15: its contact point slips at
   // v - R w x n = (1.3, 0); the floor stops that slip, J_t = -1.3 / (1 + 2), and reverses 0.8 of
   // the normal speed, J_n = 1.8.
-  test::ParticleFile file("observed.csv", "disc,3.0,5.0,0.0,1.0,0.0,0.0,0.0,0.0,0.0\n"
-                                          "disc,6.0,5.0,0.0,-1.0,0.0,0.0,0.0,0.0,0.0\n"
-                                          "disc,8.0,1.0,0.0,0.3,-1.0,0.0,0.0,0.0,2.0\n",
+  test::ParticleFile file("observed.csv",
+                          "disc,3.0,5.0,0.0,1.0,0.0,0.0,0.0,0.0,0.0\n"
+                          "disc,6.0,5.0,0.0,-1.0,0.0,0.0,0.0,0.0,0.0\n"
+                          "disc,8.0,1.0,0.0,0.3,-1.0,0.0,0.0,0.0,2.0\n",
                           "species,x,y,z,vx,vy,vz,wx,wy,wz");
   const std::string text = walled_discs_case(10.0, 10.0, file.path(), 0.8, "rough");
   EdmdEngine<2> e = engine2(text);
@@ -439,7 +444,8 @@ TEST(CollisionObserver, ReportsHeadOnAndWallCollisionsAsWorkedOut) {
   // Energy lost: 1/2 (0.3^2 + 1) + 1/2 I 2^2 before, after from the impulses.
   const double inertia = 0.5 * 0.25;
   const double vx = 0.3 - 1.3 / 3.0, vy = 0.8, spin = 2.0 - 0.5 / inertia * (1.3 / 3.0);  // w' = w - (R/I) (n x J)_z
-  const double lost = 0.5 * (0.09 + 1.0) + 0.5 * inertia * 4.0 - (0.5 * (vx * vx + vy * vy) + 0.5 * inertia * spin * spin);
+  const double lost =
+      0.5 * (0.09 + 1.0) + 0.5 * inertia * 4.0 - (0.5 * (vx * vx + vy * vy) + 0.5 * inertia * spin * spin);
   EXPECT_NEAR(w.dissipated, lost, 1e-12);
   EXPECT_GT(w.dissipated, 0.0);
 }

@@ -16,15 +16,15 @@ TEST(ConstitutiveFunctions, ChiAndBagnoldFunctionsFromTheirDefinitions) {
   m.velocity_variance = 2.0, m.velocity_variance_error = 0.2;  // 10 %
   m.normal_stress = 3.0, m.normal_stress_error = 0.3;          // 10 %
   m.shear_stress = 1.5, m.shear_stress_error = 0.0;
-  m.du_dy = 0.5, m.du_dy_error = 0.05;                         // 10 %
+  m.du_dy = 0.5, m.du_dy_error = 0.05;  // 10 %
   const double rho = 0.25, radius = 2.0;
   const auto v = constitutive_functions(m, rho, radius);
-  EXPECT_NEAR(v.chi, 3.0 / (0.25 * 2.0), 1e-15);                      // 6
-  EXPECT_NEAR(v.chi_error, 6.0 * std::sqrt(0.01 + 0.01), 1e-14);      // two 10 % errors in quadrature
-  const double shear = rho * radius * radius * 0.25;                  // rho R^2 (du/dy)^2 = 0.25
-  EXPECT_NEAR(v.f_n, 3.0 / shear, 1e-14);                             // 12
-  EXPECT_NEAR(v.f_s, 1.5 / shear, 1e-14);                             // 6
-  EXPECT_NEAR(v.f_n_error, 12.0 * std::sqrt(0.01 + 0.04), 1e-13);     // (du/dy)^2 doubles its 10 %
+  EXPECT_NEAR(v.chi, 3.0 / (0.25 * 2.0), 1e-15);                   // 6
+  EXPECT_NEAR(v.chi_error, 6.0 * std::sqrt(0.01 + 0.01), 1e-14);   // two 10 % errors in quadrature
+  const double shear = rho * radius * radius * 0.25;               // rho R^2 (du/dy)^2 = 0.25
+  EXPECT_NEAR(v.f_n, 3.0 / shear, 1e-14);                          // 12
+  EXPECT_NEAR(v.f_s, 1.5 / shear, 1e-14);                          // 6
+  EXPECT_NEAR(v.f_n_error, 12.0 * std::sqrt(0.01 + 0.04), 1e-13);  // (du/dy)^2 doubles its 10 %
   EXPECT_NEAR(v.f_s_error, 6.0 * 0.2, 1e-13);
 }
 

@@ -59,25 +59,29 @@ constexpr double kDiameter = 0.002, kDensity = 2500.0;
 const double kMass = kDensity * M_PI / 6.0 * kDiameter * kDiameter * kDiameter;
 
 std::string case_text(std::string_view model, const std::string& contact, const std::string& wall,
-                      const std::string& particles = "init = \"random\"", int count = 20, const std::string& species = "") {
+                      const std::string& particles = "init = \"random\"", int count = 20,
+                      const std::string& species = "") {
   std::ostringstream t;
   t << "[domain]\nlo = [0.0, 0.0, 0.0]\nhi = [0.02, 0.02, 0.02]\n"
     << "boundary = { x = \"periodic\", y = \"wall\", z = \"periodic\" }\n"
     << "[gravity]\nvector = [0.0, 0.0, 0.0]\n"
-    << "[[species]]\nname = \"glass\"\ndiameter = " << kDiameter << "\ndensity = " << kDensity
-    << "\ncount = " << count << "\n" << species
-    << "[particles]\n" << particles << "\n"
-    << "[contact]\nmodel = \"" << model << "\"\n" << contact << "\n"
-    << "[walls.ylo]\n" << wall << "\n"
+    << "[[species]]\nname = \"glass\"\ndiameter = " << kDiameter << "\ndensity = " << kDensity << "\ncount = " << count
+    << "\n"
+    << species << "[particles]\n"
+    << particles << "\n"
+    << "[contact]\nmodel = \"" << model << "\"\n"
+    << contact << "\n"
+    << "[walls.ylo]\n"
+    << wall << "\n"
     << "[run]\nduration = 1.0\n";
   return t.str();
 }
 
 template <class Law>
 CaseConfig example_case() {
-  return load_case_from_string(case_text(Law::name, Example<Law>::contact, Example<Law>::wall, "init = \"random\"", 20,
-                                         Example<Law>::species),
-                               "example.toml");
+  return load_case_from_string(
+      case_text(Law::name, Example<Law>::contact, Example<Law>::wall, "init = \"random\"", 20, Example<Law>::species),
+      "example.toml");
 }
 
 struct Impact {
@@ -315,24 +319,25 @@ TYPED_TEST(ContactLawContract, EngineConservesMomentumInObliqueImpact) {
   const test::ParticleFile csv("oblique_" + std::string(Law::name) + ".csv",
                                "glass,0.008,0.0095,0.01,0.5,0,0.1\nglass,0.0101,0.0105,0.01,-0.3,0.05,0\n");
   const std::string particles = "init = \"file\"\nfile = \"" + csv.path() + "\"";
-  const CaseConfig c =
-      load_case_from_string(case_text(Law::name, Example<Law>::contact, "", particles, 0, Example<Law>::species),
-                            "oblique.toml");
+  const CaseConfig c = load_case_from_string(
+      case_text(Law::name, Example<Law>::contact, "", particles, 0, Example<Law>::species), "oblique.toml");
   auto engine = test::engine_for(c, 1);
-  std::visit([&](auto& e) {
-    auto& p = e.state().particles;
-    auto momentum = [&] { return p.mass[0] * p.velocity[0] + p.mass[1] * p.velocity[1]; };
-    const Vec3 before = momentum();
-    const double scale = norm(p.mass[0] * p.velocity[0]) + norm(p.mass[1] * p.velocity[1]);
-    long contacts = 0;
-    for (int k = 0; k < 4000; ++k) {
-      e.step();
-      contacts = std::max(contacts, e.statistics().contacts);
-    }
-    EXPECT_GT(contacts, 0) << "the spheres never touched";
-    EXPECT_GT(norm(p.angular_velocity[0]), 0.0) << "friction never acted";
-    EXPECT_LE(norm(momentum() - before), 1e-12 * scale);
-  }, engine);
+  std::visit(
+      [&](auto& e) {
+        auto& p = e.state().particles;
+        auto momentum = [&] { return p.mass[0] * p.velocity[0] + p.mass[1] * p.velocity[1]; };
+        const Vec3 before = momentum();
+        const double scale = norm(p.mass[0] * p.velocity[0]) + norm(p.mass[1] * p.velocity[1]);
+        long contacts = 0;
+        for (int k = 0; k < 4000; ++k) {
+          e.step();
+          contacts = std::max(contacts, e.statistics().contacts);
+        }
+        EXPECT_GT(contacts, 0) << "the spheres never touched";
+        EXPECT_GT(norm(p.angular_velocity[0]), 0.0) << "friction never acted";
+        EXPECT_LE(norm(momentum() - before), 1e-12 * scale);
+      },
+      engine);
 }
 
 // The normal force is the slope of the energy the law says its springs hold: loaded at rest to a
@@ -369,18 +374,21 @@ TYPED_TEST(ContactLawContract, NormalForceIsTheSlopeOfItsElasticEnergy) {
 
 // 600 spheres on a square lattice at contact spacing, with friction, on a shaken floor, in the
 // law's example units.
-std::string pile_case(std::string_view model, const std::string& contact, const std::string& wall, const std::string& species) {
+std::string pile_case(std::string_view model, const std::string& contact, const std::string& wall,
+                      const std::string& species) {
   const double d = kDiameter;
   std::ostringstream t;
   t << "[engine]\nkind = \"dem\"\ndimension = 3\n"
     << "[domain]\nlo = [0.0, 0.0, 0.0]\nhi = [" << 8 * d << ", " << 20 * d << ", " << 8 * d << "]\n"
     << "boundary = { x = \"periodic\", y = [\"wall\", \"open\"], z = \"periodic\" }\n"
     << "[gravity]\nvector = [0.0, -9.81, 0.0]\n"
-    << "[[species]]\nname = \"glass\"\ndiameter = " << d << "\ndensity = " << kDensity << "\ncount = 600\n" << species
-    << "[particles]\ninit = \"lattice\"\nlattice_spacing = 1.0\nregion_hi = [" << 8 * d << ", " << 14 * d << ", " << 8 * d
-    << "]\ninitial_temperature = 1.0e-3\nseed = 3\n"
-    << "[contact]\nmodel = \"" << model << "\"\n" << contact << "\n"
-    << "[walls.ylo]\n" << wall << "\nfriction = 0.4\n"
+    << "[[species]]\nname = \"glass\"\ndiameter = " << d << "\ndensity = " << kDensity << "\ncount = 600\n"
+    << species << "[particles]\ninit = \"lattice\"\nlattice_spacing = 1.0\nregion_hi = [" << 8 * d << ", " << 14 * d
+    << ", " << 8 * d << "]\ninitial_temperature = 1.0e-3\nseed = 3\n"
+    << "[contact]\nmodel = \"" << model << "\"\n"
+    << contact << "\n"
+    << "[walls.ylo]\n"
+    << wall << "\nfriction = 0.4\n"
     << "[drive]\nface = \"ylo\"\namplitude = [0.0, " << 0.7 * d << ", 0.0]\nfrequency = [0.0, 20.0, 0.0]\n"
     << "[run]\nduration = 0.01\n";
   return t.str();
@@ -395,12 +403,14 @@ struct PileForces {
 PileForces pile_forces(const CaseConfig& c, const DemState& state, int threads, int steps) {
   auto engine = make_engine(c, state, threads);
   PileForces f;
-  std::visit([&](auto& e) {
-    for (int k = 0; k < steps; ++k) e.step();
-    f.force = e.state().particles.force;
-    f.torque = e.state().particles.torque;
-    f.contacts = e.statistics().contacts;
-  }, engine);
+  std::visit(
+      [&](auto& e) {
+        for (int k = 0; k < steps; ++k) e.step();
+        f.force = e.state().particles.force;
+        f.torque = e.state().particles.torque;
+        f.contacts = e.statistics().contacts;
+      },
+      engine);
   return f;
 }
 
@@ -422,10 +432,12 @@ TYPED_TEST(ContactLawContract, ForcesDoNotDependOnTheThreadCount) {
       pile_case(Law::name, Example<Law>::contact, Example<Law>::wall, Example<Law>::species), "threads_test.toml");
   DemState state;
   auto settling = make_engine(c, build_dem_state(c), 1);
-  std::visit([&](auto& e) {
-    for (int k = 0; k < 400; ++k) e.step();
-    state = e.state();
-  }, settling);
+  std::visit(
+      [&](auto& e) {
+        for (int k = 0; k < 400; ++k) e.step();
+        state = e.state();
+      },
+      settling);
   for (int steps : {0, 5}) {
     const PileForces one = pile_forces(c, state, 1, steps);
     ASSERT_GT(one.contacts, 500) << Law::name << ": the pile should be in contact (600 particles)";
@@ -450,7 +462,8 @@ TEST(ContactLawRegistry, UnknownModelListsEveryRegisteredLaw) {
     FAIL() << "an unknown contact model was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), "contact.model");
-    for_each_contact_law([&]<ContactLaw Law>() { EXPECT_NE(e.reason().find(std::string(Law::name)), std::string::npos); });
+    for_each_contact_law(
+        [&]<ContactLaw Law>() { EXPECT_NE(e.reason().find(std::string(Law::name)), std::string::npos); });
   }
 }
 

@@ -38,7 +38,7 @@ std::vector<std::map<std::string, double>> read_rows(const std::string& path) {
 // particle 0 in the same strip; strips 1 mm thick over a 10 x 10 mm cross-section (1e-7 m^3).
 struct StackedPair : test::ObserverFixture {
   static constexpr double kVolume = 1e-7, kArea = 1e-4;
-  Vec3 pair_force{0.2e-3, 1.0e-3, 0.0};   // N on particle 0 from particle 1
+  Vec3 pair_force{0.2e-3, 1.0e-3, 0.0};    // N on particle 0 from particle 1
   Vec3 floor_force{-0.1e-3, 3.0e-3, 0.0};  // N on particle 1 from the floor
   StackedPair() {
     c.output.profile_interval = 0.01;

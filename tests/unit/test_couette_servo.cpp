@@ -68,7 +68,8 @@ INSTANTIATE_TEST_SUITE_P(ShearRateWalls, CouetteServoWalls, testing::Values("bot
 
 TEST_P(CouetteServoWalls, UpdateFollowsListingCol002) {
   const std::string walls = GetParam();
-  EdmdState s = build_edmd_state(load_case_from_string(kCell, "servo.toml", {"servo.shear_rate_walls=\"" + walls + "\""}));
+  EdmdState s =
+      build_edmd_state(load_case_from_string(kCell, "servo.toml", {"servo.shear_rate_walls=\"" + walls + "\""}));
   CouetteServo servo(s);
   const double target = s.servo.normal_stress / s.stress_unit;
   for (const double measured_over_target : {1.5, 0.9, 20.0}) {
@@ -83,8 +84,8 @@ TEST_P(CouetteServoWalls, UpdateFollowsListingCol002) {
     const double gap_before = servo.gap_at(s, s.time);
     ASSERT_TRUE(servo.move_walls(s));
     servo.finish_update(s, 0);
-    const double expected = std::clamp(0.5 * previous / s.speed_unit + (stress / s.stress_unit - target), -target, target) *
-                            s.speed_unit;
+    const double expected =
+        std::clamp(0.5 * previous / s.speed_unit + (stress / s.stress_unit - target), -target, target) * s.speed_unit;
     EXPECT_NEAR(servo.state().wall_speed, expected, 1e-12 * (std::fabs(expected) + s.speed_unit));
     EXPECT_NEAR(servo.state().measured_stress, stress, 1e-12 * stress);
     EXPECT_DOUBLE_EQ(servo.state().gap, gap_before);
@@ -93,10 +94,8 @@ TEST_P(CouetteServoWalls, UpdateFollowsListingCol002) {
     EXPECT_DOUBLE_EQ(bottom->velocity.y, -expected);
     EXPECT_DOUBLE_EQ(top->velocity.y, expected);
     EXPECT_NEAR(top->velocity.x - bottom->velocity.x, gap_before / 24.0, 1e-12);  // U_T / H kept
-    if (walls == "top")
-      EXPECT_EQ(bottom->velocity.x, 0.0);
-    else
-      EXPECT_NEAR(0.5 * (top->velocity.x + bottom->velocity.x), 0.5, 1e-12);
+    if (walls == "top") EXPECT_EQ(bottom->velocity.x, 0.0);
+    else EXPECT_NEAR(0.5 * (top->velocity.x + bottom->velocity.x), 0.5, 1e-12);
     EXPECT_NEAR(servo.width_rate(), 9.6 / 24.0 * 2.0 * expected, 1e-15);
     if (measured_over_target == 20.0) {
       EXPECT_DOUBLE_EQ(expected, target * s.speed_unit);  // clipped

@@ -38,7 +38,8 @@ diameter = 1.0
 density = 1.909859317102744
 [particles]
 init = "file"
-file = ")" + file + R"("
+file = ")" +
+         file + R"("
 [contact]
 model = "linear_dashpot"
 kn = 1.0e5
@@ -51,7 +52,8 @@ normal_stress = 2.0
 keep_shear_rate = false
 scale_width = false
 interval = 0.02
-)" + servo_extra + R"(
+)" + servo_extra +
+         R"(
 [run]
 duration = 3.0
 )";
@@ -100,7 +102,8 @@ TEST(DemCouetteServo, MeasuresTheWallsImpulseAndSteersTheWallsByTheListingsRule)
   // closes. The sphere rides the rising floor; each speed change kicks it, and these kicks decay
   // with the speed's changes (halved at each update), so 1e-3 after some 40 updates.
   EXPECT_GT(updates, 100);
-  EXPECT_NEAR(speed, 2.0 * (kMass * kGravity / (2.0 * area) - kTarget) / rule.stress_unit * rule.speed_unit, 1e-3 * 0.1875);
+  EXPECT_NEAR(speed, 2.0 * (kMass * kGravity / (2.0 * area) - kTarget) / rule.stress_unit * rule.speed_unit,
+              1e-3 * 0.1875);
   // The energy budget: the floor's work lifts the sphere and sets it moving (m g dh + m v^2 / 2,
   // ~5.6 J), and a little more goes into the kicks' damping and the spring: at most
   // m/2 sum dv^2 = m/2 (0.094^2 + 0.047^2 + ...) = 0.006 J, and m g delta / 2 = 5e-4 J. The budget

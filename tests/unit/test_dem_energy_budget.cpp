@@ -32,9 +32,11 @@ diameter = 0.002
 density = 2500.0
 [particles]
 init = "file"
-file = ")" + particles + R"("
+file = ")" +
+         particles + R"("
 [contact]
-)" + contact + R"(
+)" + contact +
+         R"(
 [run]
 duration = 0.005
 collision_steps = 50
@@ -43,7 +45,7 @@ collision_steps = 50
 
 // `at_deepest`: the budget at the step of deepest overlap, where the pair stops approaching.
 engine_api::EnergyBudget run_binary(const std::string& contact, double& kinetic_loss,
-                                 engine_api::EnergyBudget* at_deepest = nullptr) {
+                                    engine_api::EnergyBudget* at_deepest = nullptr) {
   const test::ParticleFile file("pair.csv", "glass,0.004,0.01,0.01,0.2,0,0\nglass,0.0065,0.01,0.01,-0.2,0,0\n");
   const CaseConfig c = load_case_from_string(binary_case(contact, file.path()), "binary.toml");
   auto engine = test::engine_for(c, 1);
@@ -101,8 +103,8 @@ TEST(DemEnergyBudget, WaltonBraunImpactDissipatesOneMinusESquared) {
   const double e = 0.7, m_eff = 0.5 * kMass;
   double kinetic_loss = 0.0;
   engine_api::EnergyBudget deepest;
-  const auto b = run_binary("model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.7\nfriction = 0.0", kinetic_loss,
-                            &deepest);
+  const auto b =
+      run_binary("model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.7\nfriction = 0.0", kinetic_loss, &deepest);
   const double loss = 0.5 * m_eff * kApproach * kApproach * (1.0 - e * e);
   EXPECT_NEAR(b.dissipated, loss, 0.01 * loss);
   EXPECT_NEAR(b.dissipated, kinetic_loss, 0.01 * loss);
@@ -146,7 +148,8 @@ start = 0.1
 ramp = 0.05
 [run]
 duration = 0.4
-collision_steps = )" + std::to_string(collision_steps) + "\n";
+collision_steps = )" +
+         std::to_string(collision_steps) + "\n";
 }
 
 engine_api::EnergyBudget run_bed(int collision_steps, const std::string& text = "") {
@@ -245,7 +248,8 @@ amplitude = [0.0, 0.001, 0.0]
 frequency = [0.0, 20.0, 0.0]
 [run]
 duration = 0.2
-collision_steps = )" + std::to_string(collision_steps) + "\n";
+collision_steps = )" + std::to_string(collision_steps) +
+                           "\n";
   const CaseConfig c = load_case_from_string(text, "bounce.toml");
   auto engine = test::engine_for(c, 1);
   return std::visit(

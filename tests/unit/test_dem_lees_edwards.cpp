@@ -305,8 +305,9 @@ TEST(DemLeesEdwards, ContactHistoriesSurviveTheSeamAndTheOffsetsTurns) {
           ++n.continuing;
           const bool relisted = it->second.second != list.shift[k];
           n.relisted += relisted;
-          const double overlap = p.radius[i] + p.radius[list.partner[k]] -
-                                 norm(p.position[i] - (p.position[list.partner[k]] + engine.state().box.shift_table()[list.shift[k]]));
+          const double overlap =
+              p.radius[i] + p.radius[list.partner[k]] -
+              norm(p.position[i] - (p.position[list.partner[k]] + engine.state().box.shift_table()[list.shift[k]]));
           n.relisted_unloading += relisted && overlap < alpha;
           n.decreases += alpha < it->second.first;
         }

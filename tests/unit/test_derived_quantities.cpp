@@ -83,7 +83,8 @@ TEST(DerivedQuantities, TimeStepReproducesLanTables) {
 TEST(DerivedQuantities, ContactDurationAndStepsPerContact) {
   const double m = sphere_mass(0.003, 2490.0), k1 = 1.0e6, e = 0.9;
   const double t_r = 0.5 * M_PI * e * std::sqrt(m / (2.0 * k1));
-  EXPECT_NEAR(WaltonBraun::binary_contact(WaltonBraun::make(k1, e, 1.0, 0.0), {0.5 * m, 0.0, 0.0}).duration, t_r / e + t_r, 1e-14 * t_r);
+  EXPECT_NEAR(WaltonBraun::binary_contact(WaltonBraun::make(k1, e, 1.0, 0.0), {0.5 * m, 0.0, 0.0}).duration,
+              t_r / e + t_r, 1e-14 * t_r);
   EXPECT_NEAR(wb_time_step(e, 15, k1, m), 2.0 * t_r / 15.0, 1e-14 * t_r);
 
   const DerivedQuantities d = derive(load_case_from_string(bed_case(0.003, 2490.0, 239, 0.015, k1, "", 20), "c.toml"));
@@ -152,8 +153,10 @@ TEST(DerivedQuantities, MassHoldUpOfTable43) {
 TEST(DerivedQuantities, ShakingAcceleration) {
   for (double f : {12.19, 38.6, 7.0}) {
     char drive[256];
-    std::snprintf(drive, sizeof drive, "[drive]\nface = \"ylo\"\namplitude = [0.0, 0.005, 0.0]\nfrequency = [0.0, %.9g, 0.0]\n", f);
-    const DerivedQuantities d = derive(load_case_from_string(bed_case(0.003, 2490.0, 239, 0.015, 1.0e6, drive), "g.toml"));
+    std::snprintf(drive, sizeof drive,
+                  "[drive]\nface = \"ylo\"\namplitude = [0.0, 0.005, 0.0]\nfrequency = [0.0, %.9g, 0.0]\n", f);
+    const DerivedQuantities d =
+        derive(load_case_from_string(bed_case(0.003, 2490.0, 239, 0.015, 1.0e6, drive), "g.toml"));
     const double omega = 2.0 * M_PI * f;
     EXPECT_NEAR(d.shaking_acceleration, 0.005 * omega * omega / kG, 1e-12 * d.shaking_acceleration) << "f = " << f;
   }
@@ -170,7 +173,9 @@ TEST(DerivedQuantities, BoundaryFluctuationVelocityOfTheRotaryPreset) {
   const double d = 0.1, f = 50.0, a = 2.0 * std::sqrt(2.0 * d * kG) / (2.0 * M_PI * f);
   EXPECT_NEAR(a, 8.917e-3, 1e-6);
   char drive[256];
-  std::snprintf(drive, sizeof drive, "[drive]\npreset = \"rotary\"\namplitude = [%.12g, %.12g, %.12g]\nfrequency = [50.0, 50.0, 50.0]\n", a, a, a);
+  std::snprintf(drive, sizeof drive,
+                "[drive]\npreset = \"rotary\"\namplitude = [%.12g, %.12g, %.12g]\nfrequency = [50.0, 50.0, 50.0]\n", a,
+                a, a);
   const CaseConfig c = load_case_from_string(bed_case(d, 1200.0, 119, 0.5, 2.7e8, drive), "rotary.toml");
   EXPECT_NEAR(c.drive.phase.y, 2.0 * M_PI / 3.0, 1e-15);
   EXPECT_NEAR(c.drive.phase.z, 4.0 * M_PI / 3.0, 1e-15);
@@ -182,7 +187,8 @@ TEST(DerivedQuantities, BoundaryFluctuationVelocityOfTheRotaryPreset) {
   // One shaken axis: the same definition V^2 = <|v|^2> / 3 (eq. 4-1-2) gives v0^2 / 6, V_b =
   // v0 / sqrt(6 d g), a third of the rotary V_b^2 for the same amplitude.
   std::snprintf(drive, sizeof drive, "[drive]\namplitude = [0.0, %.12g, 0.0]\nfrequency = [0.0, 50.0, 0.0]\n", a);
-  const DerivedQuantities vertical = derive(load_case_from_string(bed_case(d, 1200.0, 119, 0.5, 2.7e8, drive), "v.toml"));
+  const DerivedQuantities vertical =
+      derive(load_case_from_string(bed_case(d, 1200.0, 119, 0.5, 2.7e8, drive), "v.toml"));
   EXPECT_NEAR(vertical.boundary_fluctuation_velocity, v0 / std::sqrt(6.0 * d * kG), 1e-9);
   EXPECT_NEAR(vertical.floor_peak_speed, v0, 1e-9 * v0);
 }

@@ -75,7 +75,8 @@ TEST(DomainDecomposition, CutsAtQuantilesGiveEachRankItsShare) {
 TEST(DomainDecomposition, OwnersAndDistancesThroughPeriodicFaces) {
   DomainDecomposition d;
   d.shape = {3, 1, 2};
-  d.bounds = {std::vector<double>{0.0, 0.25, 0.5, 1.0}, std::vector<double>{0.0, 1.0}, std::vector<double>{0.0, 0.5, 1.0}};
+  d.bounds = {std::vector<double>{0.0, 0.25, 0.5, 1.0}, std::vector<double>{0.0, 1.0},
+              std::vector<double>{0.0, 0.5, 1.0}};
   d.periodic = {true, false, true};
   EXPECT_EQ(d.rank_at({2, 0, 1}), 5);
   EXPECT_EQ(d.coordinates(5), (Shape{2, 0, 1}));
@@ -110,7 +111,8 @@ TEST(DomainDecomposition, NeighboursAreTheRanksWithinReach) {
   EXPECT_EQ(d.neighbours(3), (std::vector<int>{0, 1, 2}));
   // Four walled slabs: each sees the next ones only; a ghost width wider than a slab reaches on.
   d.shape = {4, 1, 1};
-  d.bounds = {std::vector<double>{0.0, 0.25, 0.5, 0.75, 1.0}, std::vector<double>{0.0, 1.0}, std::vector<double>{0.0, 1.0}};
+  d.bounds = {std::vector<double>{0.0, 0.25, 0.5, 0.75, 1.0}, std::vector<double>{0.0, 1.0},
+              std::vector<double>{0.0, 1.0}};
   EXPECT_EQ(d.neighbours(0), (std::vector<int>{1}));
   EXPECT_EQ(d.neighbours(2), (std::vector<int>{1, 3}));
   d.periodic[0] = true;

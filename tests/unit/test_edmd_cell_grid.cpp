@@ -127,11 +127,12 @@ TEST(CellGrid, VisitsTheCellsAroundACellWithTheirImageShifts) {
   const std::vector<Flight> nodes;
   const LeesEdwardsImages still;
   std::vector<std::tuple<int, double, double, double>> seen;
-  grid.for_each_cell_around(b, {0, 3, 2}, nodes, still, 0.0, 0.0, [&](int cell, const Vec3& shift, const Vec3& v, bool x_images) {
-    EXPECT_FALSE(x_images);
-    EXPECT_EQ(v.x, 0.0);
-    seen.emplace_back(cell, shift.x, shift.y, shift.z);
-  });
+  grid.for_each_cell_around(b, {0, 3, 2}, nodes, still, 0.0, 0.0,
+                            [&](int cell, const Vec3& shift, const Vec3& v, bool x_images) {
+                              EXPECT_FALSE(x_images);
+                              EXPECT_EQ(v.x, 0.0);
+                              seen.emplace_back(cell, shift.x, shift.y, shift.z);
+                            });
   ASSERT_EQ(seen.size(), 27u);
   std::set<int> cells;
   for (const auto& [cell, sx, sy, sz] : seen) {
@@ -145,7 +146,8 @@ TEST(CellGrid, VisitsTheCellsAroundACellWithTheirImageShifts) {
 
   // At a walled face along z (cell z = 0) the layer below does not exist.
   int count = 0;
-  grid.for_each_cell_around(b, {1, 1, 0}, nodes, still, 0.0, 0.0, [&](int, const Vec3&, const Vec3&, bool) { ++count; });
+  grid.for_each_cell_around(b, {1, 1, 0}, nodes, still, 0.0, 0.0,
+                            [&](int, const Vec3&, const Vec3&, bool) { ++count; });
   EXPECT_EQ(count, 18);
 
   // Images across x move with a Couette cell's width rate.
@@ -157,7 +159,8 @@ TEST(CellGrid, VisitsTheCellsAroundACellWithTheirImageShifts) {
   CellGrid<2> flat;
   flat.reset(b, 2.0, 1e6, 0);
   count = 0;
-  flat.for_each_cell_around(b, {1, 1, 0}, nodes, still, 0.0, 0.0, [&](int, const Vec3&, const Vec3&, bool) { ++count; });
+  flat.for_each_cell_around(b, {1, 1, 0}, nodes, still, 0.0, 0.0,
+                            [&](int, const Vec3&, const Vec3&, bool) { ++count; });
   EXPECT_EQ(count, 9);
 }
 
@@ -211,8 +214,8 @@ TEST(CellGrid, TimeToLeaveACellAgainstClosedForms) {
   EXPECT_EQ(face, 4);  // z, lower
   // Up at 1 against g = 2 downwards: it comes back down through the lower face when
   // 1 + t - t^2 = 0, t = (1 + sqrt 5) / 2.
-  EXPECT_NEAR(grid.exit_time(b, {1, 1, 1}, centre, {0.0, 0.0, 1.0}, {0.0, 0.0, -2.0}, 0.0, face), (1.0 + std::sqrt(5.0)) / 2.0,
-              1e-12);
+  EXPECT_NEAR(grid.exit_time(b, {1, 1, 1}, centre, {0.0, 0.0, 1.0}, {0.0, 0.0, -2.0}, 0.0, face),
+              (1.0 + std::sqrt(5.0)) / 2.0, 1e-12);
   EXPECT_EQ(face, 4);
   // At rest: never.
   EXPECT_EQ(grid.exit_time(b, {1, 1, 1}, centre, {}, {}, 0.0, face), kNever);

@@ -59,7 +59,8 @@ class Campbell1982 : public ::testing::TestWithParam<double> {};  // beta
 TEST_P(Campbell1982, StationaryLowerWall) {
   const double beta = GetParam(), e = 0.8;
   for (double radius : {1.0, 0.37}) {
-    for (const auto& [U0, V0, w0] : {std::tuple{1.0, -2.0, 0.0}, std::tuple{-0.7, -0.3, 2.5}, std::tuple{3.0, -1.0, -4.0}}) {
+    for (const auto& [U0, V0, w0] :
+         {std::tuple{1.0, -2.0, 0.0}, std::tuple{-0.7, -0.3, 2.5}, std::tuple{3.0, -1.0, -4.0}}) {
       Body p{{U0, V0, 0.0}, {0.0, 0.0, w0 / radius}, radius, 2.3, beta};
       collide_wall(p.pair(), {0, 1, 0}, {}, constant_law(e), WallCondition::rough);
       EXPECT_NEAR(p.v.x, U0 / (1 + beta) - w0 / (1 + 1 / beta), kTol);
@@ -100,9 +101,8 @@ TEST_P(Campbell1982, ParticlePairInCentreOfMassFrame) {
   for (double theta : {0.0, 0.3, 2.0, -2.7}) {  // orientation of the line of centres
     const Vec3 k{std::cos(theta), std::sin(theta), 0.0};
     const Vec3 t = cross(k, Vec3{0, 0, 1});
-    for (const auto& [U0, V0, wA0, wB0] :
-         {std::tuple{1.0, 0.0, 0.0, 0.0}, std::tuple{1.0, 1.0, 0.0, 0.0}, std::tuple{0.4, -0.8, 1.3, -0.2},
-          std::tuple{2.0, 0.5, -3.0, 2.0}}) {
+    for (const auto& [U0, V0, wA0, wB0] : {std::tuple{1.0, 0.0, 0.0, 0.0}, std::tuple{1.0, 1.0, 0.0, 0.0},
+                                           std::tuple{0.4, -0.8, 1.3, -0.2}, std::tuple{2.0, 0.5, -3.0, 2.0}}) {
       const double R = 0.8;
       Body A{U0 * k + V0 * t, {0, 0, wA0 / R}, R, 1.7, beta};
       Body B{-(U0 * k + V0 * t), {0, 0, wB0 / R}, R, 1.7, beta};
@@ -134,8 +134,10 @@ PairSetup random_pair(std::mt19937_64& rng) {
   PairSetup s;
   s.normal = Vec3{u(rng), u(rng), u(rng)};
   s.normal = s.normal * (1.0 / norm(s.normal));
-  s.i = Body{{u(rng), u(rng), u(rng)}, {3 * u(rng), 3 * u(rng), 3 * u(rng)}, pos(rng), 3 * pos(rng), 0.2 + 0.4 * pos(rng)};
-  s.j = Body{{u(rng), u(rng), u(rng)}, {3 * u(rng), 3 * u(rng), 3 * u(rng)}, pos(rng), 3 * pos(rng), 0.2 + 0.4 * pos(rng)};
+  s.i = Body{
+      {u(rng), u(rng), u(rng)}, {3 * u(rng), 3 * u(rng), 3 * u(rng)}, pos(rng), 3 * pos(rng), 0.2 + 0.4 * pos(rng)};
+  s.j = Body{
+      {u(rng), u(rng), u(rng)}, {3 * u(rng), 3 * u(rng), 3 * u(rng)}, pos(rng), 3 * pos(rng), 0.2 + 0.4 * pos(rng)};
   // Make them approach along the normal.
   const double vn = dot(s.i.v - s.j.v, s.normal);
   if (vn > 0) s.i.v -= (2 * vn + 0.1) * s.normal;
@@ -159,7 +161,9 @@ TEST(CollidePair, ConservesMomentumAndAngularMomentumAboutTheContactPoint) {
     PairSetup s = random_pair(rng);
     const double e = unit(rng), b = 2 * unit(rng) - 1;
     const Vec3 c = s.xi - s.i.radius * s.normal;
-    auto L = [&](const Body& body, const Vec3& x) { return body.inertia() * body.w + body.mass * cross(x - c, body.v); };
+    auto L = [&](const Body& body, const Vec3& x) {
+      return body.inertia() * body.w + body.mass * cross(x - c, body.v);
+    };
     const Vec3 p0 = s.i.mass * s.i.v + s.j.mass * s.j.v;
     const Vec3 Li0 = L(s.i, s.xi), Lj0 = L(s.j, s.xj);
     const Vec3 vi0 = s.i.v;
@@ -240,7 +244,7 @@ TEST(CollidePair, HeadOnEqualMassesExchangeVelocities) {
   // e = 0.5, m_a = 3 m_b: v_a' = v_cm - e m_b/(m_a+m_b) dv, etc.
   Body c{{1, 0, 0}, {}, 0.5, 3.0, 0.4}, d{{-1, 0, 0}, {}, 0.5, 1.0, 0.4};
   collide_pair(d.pair(), c.pair(), {1, 0, 0}, constant_law(0.5), -1.0);
-  const double vcm = (3.0 * 1 + 1.0 * -1) / 4.0;  // 0.5
+  const double vcm = (3.0 * 1 + 1.0 * -1) / 4.0;      // 0.5
   EXPECT_NEAR(c.v.x, vcm - 0.5 * 0.25 * 2.0, 1e-15);  // 0.25
   EXPECT_NEAR(d.v.x, vcm + 0.5 * 0.75 * 2.0, 1e-15);  // 1.25
 }
@@ -285,11 +289,15 @@ TEST(CollideWall, RoughIn3DStopsTheContactPointAndConservesAngularMomentumAboutI
     n = n * (1.0 / norm(n));
     Vec3 wall{u(rng), u(rng), u(rng)};
     wall -= dot(wall, n) * n;  // tangential wall motion
-    Body p{{u(rng), u(rng), u(rng)}, {3 * u(rng), 3 * u(rng), 3 * u(rng)}, 0.2 + std::fabs(u(rng)), 1.0 + u(rng) * 0.5, 0.4};
+    Body p{{u(rng), u(rng), u(rng)},
+           {3 * u(rng), 3 * u(rng), 3 * u(rng)},
+           0.2 + std::fabs(u(rng)),
+           1.0 + u(rng) * 0.5,
+           0.4};
     const double vn = dot(p.v - wall, n);
     if (vn > 0) p.v -= (2 * vn + 0.1) * n;
     const double vn0 = dot(p.v - wall, n);
-    const Vec3 r = -p.radius * n;  // from the centre to the contact point
+    const Vec3 r = -p.radius * n;                                 // from the centre to the contact point
     const Vec3 L0 = p.inertia() * p.w + p.mass * cross(-r, p.v);  // about the contact point
     collide_wall(p.pair(), n, wall, constant_law(0.8), WallCondition::rough);
     const Vec3 contact = p.v + cross(p.w, r) - wall;
@@ -387,7 +395,8 @@ velocity_scale = 2.5
 elastic_speed = 0.01
 wall_restitution = 0.8
 roughness = "rough"
-)", "campbell.toml");
+)",
+                                               "campbell.toml");
     const EdmdState s = build_edmd_state(c);
     EXPECT_EQ(s.restitution.kind, RestitutionLaw::Kind::campbell);
     EXPECT_EQ(s.restitution.velocity_scale, 2.5);
@@ -400,7 +409,8 @@ roughness = "rough"
     const CaseConfig c = load_case_from_string(base + R"([collision]
 restitution_law = "campbell"
 tangential_restitution = 0.5
-)", "default_scale.toml");
+)",
+                                               "default_scale.toml");
     const EdmdState s = build_edmd_state(c);
     EXPECT_DOUBLE_EQ(s.restitution.velocity_scale, std::sqrt(4.0 * 0.25));  // sqrt(g R), R = 0.25
     EXPECT_EQ(s.tangential_restitution, 0.5);

@@ -134,7 +134,8 @@ TEST(EdmdEnergyBudget, ClosesInAChute) {
 // the walls' work drives it, the images moving with the width rate do some too.
 TEST(EdmdEnergyBudget, ClosesInAServoCouetteCell) {
   for (const char* walls : {"both", "top"}) {
-    const CaseConfig c = load_case_from_string(kCouette, "couette.toml", {std::string("servo.shear_rate_walls=\"") + walls + "\""});
+    const CaseConfig c =
+        load_case_from_string(kCouette, "couette.toml", {std::string("servo.shear_rate_walls=\"") + walls + "\""});
     const auto b = run_budget<2>(c, 3000.0);
     EXPECT_GT(b.wall_work, 0.0) << walls;
     EXPECT_NE(b.boundary_work, 0.0) << walls;
@@ -164,8 +165,8 @@ TEST(EdmdEnergyBudget, ClosesUnderLeesEdwardsShear) {
 // apart to 2.00001 R and each wall rebound to 1.00001 R. The shifts move particles against gravity;
 // their energy is the separation's input, and the budget still closes to round-off.
 TEST(EdmdEnergyBudget, ClosesWithCampbellsReseparation) {
-  const CaseConfig c = load_case_from_string(kChute, "chute.toml",
-                                             {"collision.contact_duration=0", "collision.separation_gap=1.0e-5"});
+  const CaseConfig c =
+      load_case_from_string(kChute, "chute.toml", {"collision.contact_duration=0", "collision.separation_gap=1.0e-5"});
   const auto b = run_budget<2>(c, 300.0);
   EXPECT_NE(b.separation_work, 0.0);
   EXPECT_NEAR(b.input() - b.change - b.dissipated, 0.0, kRoundOff * b.input());
@@ -185,7 +186,8 @@ dimension = 2
 [domain]
 lo = [0.0, 0.0, 0.0]
 hi = [40.0, 40.0, 1.0]
-boundary = { x = "periodic", y = )" + y_boundary + R"(, z = "periodic" }
+boundary = { x = "periodic", y = )" +
+                           y_boundary + R"(, z = "periodic" }
 [gravity]
 vector = [0.0, 0.0, 0.0]
 [[species]]
@@ -198,7 +200,8 @@ file = ")" + file.path() + R"("
 [collision]
 restitution = 0.5
 separation_gap = 1.0e-5
-)" + extra + "[run]\nduration = " + std::to_string(duration) + "\n";
+)" + extra +
+                           "[run]\nduration = " + std::to_string(duration) + "\n";
   return load_case_from_string(text, "discs.toml");
 }
 }  // namespace
@@ -218,7 +221,8 @@ TEST(EdmdReseparation, APairLeavesItsCollisionAtTheListingsDistance) {
 // leaves its centre 1.00001 R from the wall, so at t = 6 it stands at 1.00001 + 0.5 x 2. Without
 // the shift it would stand at 2 exactly: the 1e-5 is a million times the bound.
 TEST(EdmdReseparation, AWallReboundLeavesTheDiscAtTheListingsDistance) {
-  const CaseConfig c = reseparation_case("disc,10,5,0.5,0,-1,0\n", "[\"wall\", \"open\"]", "[walls.ylo]\nrestitution = 0.5\n", 6.0);
+  const CaseConfig c =
+      reseparation_case("disc,10,5,0.5,0,-1,0\n", "[\"wall\", \"open\"]", "[walls.ylo]\nrestitution = 0.5\n", 6.0);
   edmd::EdmdEngine<2> e(edmd::build_edmd_state(c));
   e.advance_to(6.0);
   EXPECT_EQ(e.counters().wall_collisions, 1);

@@ -128,10 +128,16 @@ void check_lists_follow_cells(const test::ElasticGas& g, double t_end) {
 }
 
 TEST(EdmdNeighbourLists, FollowTheCellSearch3D) { check_lists_follow_cells<3>({3, 10, 0.3, 1.0, -1.0, false, 3}, 0.3); }
-TEST(EdmdNeighbourLists, FollowTheCellSearch3DDenseRough) { check_lists_follow_cells<3>({3, 10, 0.45, 1.0, 1.0, false, 4}, 0.15); }
-TEST(EdmdNeighbourLists, FollowTheCellSearch3DWalls) { check_lists_follow_cells<3>({3, 10, 0.3, 1.0, -1.0, true, 5}, 0.3); }
+TEST(EdmdNeighbourLists, FollowTheCellSearch3DDenseRough) {
+  check_lists_follow_cells<3>({3, 10, 0.45, 1.0, 1.0, false, 4}, 0.15);
+}
+TEST(EdmdNeighbourLists, FollowTheCellSearch3DWalls) {
+  check_lists_follow_cells<3>({3, 10, 0.3, 1.0, -1.0, true, 5}, 0.3);
+}
 TEST(EdmdNeighbourLists, FollowTheCellSearch2D) { check_lists_follow_cells<2>({2, 30, 0.5, 1.0, -1.0, false, 6}, 0.6); }
-TEST(EdmdNeighbourLists, FollowTheCellSearch2DWalls) { check_lists_follow_cells<2>({2, 30, 0.3, 1.0, 1.0, true, 7}, 1.5); }
+TEST(EdmdNeighbourLists, FollowTheCellSearch2DWalls) {
+  check_lists_follow_cells<2>({2, 30, 0.3, 1.0, 1.0, true, 7}, 1.5);
+}
 
 TEST(EdmdNeighbourLists, WalledGasKeepsEnergyAndNeverOverlaps) {
   EdmdEngine<3> e = engine_from<3>(test::elastic_gas_case({3, 10, 0.4, 1.0, -1.0, true, 8}));
@@ -144,7 +150,8 @@ TEST(EdmdNeighbourLists, WalledGasKeepsEnergyAndNeverOverlaps) {
     worst_overlap = std::max(worst_overlap, max_relative_overlap(e.state()));
   }
   std::printf("  walled gas: %lld collisions, %lld wall, %lld list rebuilds; max |dE/E| %.2e, max overlap %.2e\n",
-              e.counters().collisions, e.counters().wall_collisions, e.counters().list_rebuilds, worst_energy, worst_overlap);
+              e.counters().collisions, e.counters().wall_collisions, e.counters().list_rebuilds, worst_energy,
+              worst_overlap);
   EXPECT_GT(e.counters().wall_collisions, 0);
   EXPECT_GT(e.counters().list_rebuilds, 0);
   EXPECT_LT(worst_energy, 1e-9);
@@ -175,10 +182,11 @@ void check_elastic_gas(const std::string& text, long long target_collisions, dou
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto& k = e.counters();
-  std::printf("  %dD elastic gas, %zu particles: %lld collisions (%lld events) in t = %g, %.2f s (%.3g collisions/s); "
-              "max |dE/E| %.2e, max |dP|/sum m|v| %.2e, max overlap %.2e diameters, %d checks\n",
-              Dim, e.state().particles.size(), k.collisions, k.events, t, seconds, k.collisions / seconds, worst_energy,
-              worst_momentum, worst_overlap, outputs);
+  std::printf(
+      "  %dD elastic gas, %zu particles: %lld collisions (%lld events) in t = %g, %.2f s (%.3g collisions/s); "
+      "max |dE/E| %.2e, max |dP|/sum m|v| %.2e, max overlap %.2e diameters, %d checks\n",
+      Dim, e.state().particles.size(), k.collisions, k.events, t, seconds, k.collisions / seconds, worst_energy,
+      worst_momentum, worst_overlap, outputs);
   ASSERT_GE(k.collisions, target_collisions);
   EXPECT_EQ(k.wall_collisions, 0);
   // Energy: each collision conserves it exactly but for a few ulps, with random signs: ~sqrt(10^6)
@@ -251,7 +259,8 @@ void check_bouncing_ball(const std::string& condition) {
   // bounces free flight is an exact parabola and each bounce a few operations: 1e-12 relative.
   const double e = 0.8, g = 9.81, h0 = 2.0, R = 0.5;
   test::ParticleFile file("ball.csv", "ball,1.5,2.5,1.5,0.3,0.0,0.0\n");
-  const std::string text = ball_on_floor_case(Dim, file.path(), e, condition, "rolling_speed = 0.0\nelastic_speed = 0.0");
+  const std::string text =
+      ball_on_floor_case(Dim, file.path(), e, condition, "rolling_speed = 0.0\nelastic_speed = 0.0");
   EdmdEngine<Dim> engine = engine_from<Dim>(text);
   const auto& p = engine.state().particles;
   ASSERT_EQ(p.size(), 1u);
@@ -314,11 +323,11 @@ void check_rolling(const std::string& condition) {
   const double u2 = p.velocity[0].x, x2 = e.state().box.unwrapped(p.position[0], p.image[0]).x;
   EXPECT_NEAR(u2 - u1, a * dt, 1e-12);
   EXPECT_NEAR(x2 - x1, u1 * dt + 0.5 * a * dt * dt, 1e-12);
-  EXPECT_EQ(p.velocity[0].y, 0.0);               // on the floor, not bouncing
+  EXPECT_EQ(p.velocity[0].y, 0.0);  // on the floor, not bouncing
   EXPECT_NEAR(p.position[0].y, R, 1e-15);
-  EXPECT_EQ(e.counters().rolling_starts, 1);      // no further bounces
+  EXPECT_EQ(e.counters().rolling_starts, 1);  // no further bounces
   if (smooth) {
-    EXPECT_EQ(p.angular_velocity[0], w1);        // sliding: spin untouched
+    EXPECT_EQ(p.angular_velocity[0], w1);  // sliding: spin untouched
   } else {
     EXPECT_NEAR(p.angular_velocity[0].z, -u2 / R, 1e-12);  // rolling without slip
     EXPECT_NEAR(w1.z, -u1 / R, 1e-12);
@@ -523,7 +532,8 @@ void check_against(const Compressibility& m, double reference, const char* what,
 TEST(EdmdEquationOfState, HardSpheresMatchCarnahanStarling) {
   // 1000 spheres; 20 blocks of 10^4 collisions (20 per particle) after equilibration.
   for (double phi : {0.1, 0.2, 0.3}) {
-    const Compressibility m = measure_compressibility<3>(gas_case(3, 10, phi, -1.0, 7), kRunScale == 1.0 ? 10'000 : 5'000);
+    const Compressibility m =
+        measure_compressibility<3>(gas_case(3, 10, phi, -1.0, 7), kRunScale == 1.0 ? 10'000 : 5'000);
     const double cs = (1 + phi + phi * phi - phi * phi * phi) / std::pow(1 - phi, 3);
     check_against(m, cs, "hard spheres", phi);
   }
@@ -532,7 +542,8 @@ TEST(EdmdEquationOfState, HardSpheresMatchCarnahanStarling) {
 TEST(EdmdEquationOfState, HardDiscsMatchHenderson) {
   // 1024 discs; 20 blocks of 10^4 collisions.
   for (double phi : {0.2, 0.35, 0.5}) {
-    const Compressibility m = measure_compressibility<2>(gas_case(2, 32, phi, -1.0, 8), kRunScale == 1.0 ? 10'000 : 5'000);
+    const Compressibility m =
+        measure_compressibility<2>(gas_case(2, 32, phi, -1.0, 8), kRunScale == 1.0 ? 10'000 : 5'000);
     const double henderson = (1 + phi * phi / 8) / ((1 - phi) * (1 - phi));
     check_against(m, henderson, "hard discs", phi);
   }
@@ -604,9 +615,10 @@ TEST(EdmdChute, TwentyDegreesRuns1e7EventsWithoutStalling) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto& k = e.counters();
-  std::printf("  20-degree chute: %lld events (%lld collisions, %lld wall, %lld rolling starts, %lld stale) to "
-              "t = %g in %.2f s: %.3g events/s\n",
-              k.events, k.collisions, k.wall_collisions, k.rolling_starts, k.stale, t, seconds, k.events / seconds);
+  std::printf(
+      "  20-degree chute: %lld events (%lld collisions, %lld wall, %lld rolling starts, %lld stale) to "
+      "t = %g in %.2f s: %.3g events/s\n",
+      k.events, k.collisions, k.wall_collisions, k.rolling_starts, k.stale, t, seconds, k.events / seconds);
   ::testing::Test::RecordProperty("events_per_second", std::to_string(k.events / seconds));
   EXPECT_GE(k.events, target);
   EXPECT_GT(k.collisions, target / 2);  // mostly real collisions, not bookkeeping
@@ -626,7 +638,8 @@ TEST(EdmdChute, TwentyDegreesRuns1e7EventsWithoutStalling) {
 // ~1e-8 s of it; 1e-6 allows for that) instead of crawling for ever.
 TEST(EdmdStall, ZenoBouncesStopTheRunWithAMessage) {
   test::ParticleFile file("zeno.csv", "ball,1.5,2.5,1.5,0.0,0.0,0.0\n");
-  const std::string text = ball_on_floor_case(3, file.path(), 0.8, "smooth", "rolling_speed = 0.0\ncontact_duration = 0.0");
+  const std::string text =
+      ball_on_floor_case(3, file.path(), 0.8, "smooth", "rolling_speed = 0.0\ncontact_duration = 0.0");
   EdmdEngine<3> engine = engine_from<3>(text);
   try {
     engine.advance_to(10.0);
@@ -739,7 +752,8 @@ init = "file"
 file = ")" + file.path() + R"("
 [collision]
 restitution = 0.5
-contact_duration = )" + std::to_string(contact_duration) + R"(
+contact_duration = )" + std::to_string(contact_duration) +
+                           R"(
 [run]
 duration = 5.0
 )";

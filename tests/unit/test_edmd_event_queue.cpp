@@ -66,8 +66,8 @@ TEST(EventQueue, TopStaysTheEarliestThroughRandomUpdates) {
 
 TEST(EventQueue, NeverScheduledParticlesStayBehindScheduledOnes) {
   // The engine gives particles with nothing ahead an infinite time; they must never come first.
-  std::vector<double> times = {std::numeric_limits<double>::infinity(), 3.0,
-                               std::numeric_limits<double>::infinity(), 1.0, 2.0};
+  std::vector<double> times = {std::numeric_limits<double>::infinity(), 3.0, std::numeric_limits<double>::infinity(),
+                               1.0, 2.0};
   EventQueue q;
   q.reset(times.size(), &times);
   EXPECT_EQ(q.top(), 3u);

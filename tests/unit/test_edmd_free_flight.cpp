@@ -198,8 +198,8 @@ ld reference_closing_time(ld gap, ld rate, ld accel) {
 
 TEST(ClosingTime, ConstantSpeed) {
   EXPECT_EQ(closing_time(2.0, -4.0, 0.0), 0.5);
-  EXPECT_EQ(closing_time(2.0, 4.0, 0.0), kNever);   // moving away
-  EXPECT_EQ(closing_time(2.0, 0.0, 0.0), kNever);   // at rest
+  EXPECT_EQ(closing_time(2.0, 4.0, 0.0), kNever);  // moving away
+  EXPECT_EQ(closing_time(2.0, 0.0, 0.0), kNever);  // at rest
 }
 
 TEST(ClosingTime, FallingOntoAFloor) {
@@ -260,8 +260,9 @@ TEST(ClosingTime, RandomCasesMatchLongDouble) {
     if (disc >= 0.0 && disc < 1e-6 * rate * rate) continue;
     const double t = closing_time(gap, rate, accel);
     const ld ref = gap == 0.0 && rate > 0.0 && accel < 0.0 ? -2.0L * rate / accel
-                   : gap == 0.0 && (rate < 0.0 || (rate == 0.0 && accel < 0.0)) ? 0.0L
-                                                                                : reference_closing_time(gap, rate, accel);
+                   : gap == 0.0 && (rate < 0.0 || (rate == 0.0 && accel < 0.0))
+                       ? 0.0L
+                       : reference_closing_time(gap, rate, accel);
     if (std::isinf((double)ref)) {
       EXPECT_EQ(t, kNever) << gap << ' ' << rate << ' ' << accel;
       continue;
@@ -340,7 +341,7 @@ TEST(ContactTimeAccelerated, ReducesToTheQuadraticWithoutAcceleration) {
 
 TEST(ContactTimeAccelerated, OverlapAndRecedingCases) {
   const Vec3 g{0.0, -1.0, 0.0};
-  EXPECT_EQ(contact_time_accelerated({0.9, 0, 0}, {-1, 0, 0}, g, 1.0, kNever), 0.0);  // overlapping, closing
+  EXPECT_EQ(contact_time_accelerated({0.9, 0, 0}, {-1, 0, 0}, g, 1.0, kNever), 0.0);    // overlapping, closing
   EXPECT_EQ(contact_time_accelerated({0.9, 0, 0}, {1, 0, 0}, g, 1.0, kNever), kNever);  // overlapping, opening
   // Apart and moving away, but the acceleration brings them back: found (x = 2 + t - t^2/2 = 1
   // at t = 1 + sqrt(3)).

@@ -15,9 +15,9 @@ using namespace grainflow;
 
 namespace {
 
-constexpr double kRate = 0.1;     // 1/s
-constexpr double kSide = 30.0;    // box side, diameters (d = 1)
-constexpr int kDiscs = 400;       // area fraction 400 pi / 4 / 900 = 0.35
+constexpr double kRate = 0.1;   // 1/s
+constexpr double kSide = 30.0;  // box side, diameters (d = 1)
+constexpr int kDiscs = 400;     // area fraction 400 pi / 4 / 900 = 0.35
 
 std::string sheared_gas(double restitution) {
   return "[engine]\nkind = \"edmd\"\ndimension = 2\n[domain]\nlo = [0.0, 0.0, 0.0]\nhi = [30.0, 30.0, 1.0]\n"
@@ -149,7 +149,7 @@ TEST(EdmdLeesEdwards, SeamStripsEqualTheInterior) {
 TEST(LeesEdwardsImages, TheOffsetIsUTModuloTheWidth) {
   const edmd::LeesEdwardsImages sheared{1.5};
   EXPECT_DOUBLE_EQ(sheared.offset(10.0, 2.0), 3.0);
-  EXPECT_DOUBLE_EQ(sheared.offset(10.0, 9.0), 3.5);  // 13.5 mod 10
+  EXPECT_DOUBLE_EQ(sheared.offset(10.0, 9.0), 3.5);                        // 13.5 mod 10
   EXPECT_DOUBLE_EQ(edmd::LeesEdwardsImages{-1.5}.offset(10.0, 2.0), 7.0);  // within [0, L) either way
   EXPECT_EQ(edmd::LeesEdwardsImages{}.offset(10.0, 5.0), 0.0);
   EXPECT_FALSE(edmd::LeesEdwardsImages{}.sliding());
@@ -214,12 +214,12 @@ TEST(LeesEdwardsImages, AParticleThroughAYFaceBecomesItsImageInTheSlidingRow) {
   box.hi = {10.0, 8.0, 1.0};
   box.periodic = {true, true, true};
   const edmd::LeesEdwardsImages sheared{1.5};
-  Vec3 x{1.0, 0.0, 0.0}, v{0.7, 0.2, 0.0};  // y already brought down by a height
+  Vec3 x{1.0, 0.0, 0.0}, v{0.7, 0.2, 0.0};                // y already brought down by a height
   EXPECT_EQ(sheared.enter_row(box, 1, 2.0, x, v), -1.0);  // 1 - 3 = -2, one width back up
   EXPECT_DOUBLE_EQ(x.x, 8.0);
   EXPECT_DOUBLE_EQ(v.x, 0.7 - 1.5);
   EXPECT_EQ(v.y, 0.2);
-  Vec3 up{8.0, 8.0, 0.0}, w{0.0, -0.2, 0.0};  // through the bottom face
+  Vec3 up{8.0, 8.0, 0.0}, w{0.0, -0.2, 0.0};               // through the bottom face
   EXPECT_EQ(sheared.enter_row(box, -1, 2.0, up, w), 1.0);  // 8 + 3 = 11
   EXPECT_DOUBLE_EQ(up.x, 1.0);
   EXPECT_DOUBLE_EQ(w.x, 1.5);

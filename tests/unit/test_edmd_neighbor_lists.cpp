@@ -113,7 +113,7 @@ TEST(NeighborLists, TheShellGrowsWithTheMeanFreePathWithinBounds) {
   EXPECT_NEAR(NeighborLists<3>::shell_fraction(b, 4000, 1.0), 0.2 + 0.5 * free_path, 1e-12);
   const double n2 = 200.0 / 400.0;
   EXPECT_NEAR(NeighborLists<2>::shell_fraction(b, 200, 1.0), 0.2 + 0.5 / (2.0 * std::sqrt(2.0) * n2), 1e-12);
-  EXPECT_EQ(NeighborLists<3>::shell_fraction(b, 10, 1.0), 0.6);        // dilute
+  EXPECT_EQ(NeighborLists<3>::shell_fraction(b, 10, 1.0), 0.6);               // dilute
   EXPECT_NEAR(NeighborLists<3>::shell_fraction(b, 1000000, 1.0), 0.2, 1e-3);  // dense
 }
 

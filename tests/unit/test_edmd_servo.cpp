@@ -18,7 +18,16 @@ namespace {
 
 // cases/campbell1982/couette_noslip.toml without its comments: 40 rough discs, no-slip walls,
 // sigma_n = 0.567 (R/H)^2 = 9.84375e-4 in units m U_T^2 / R^2 at H = 24 R.
-const char* kCouette = "[engine]\nkind = \"edmd\"\ndimension = 2\n[domain]\nlo = [0.0, 0.0, 0.0]\nhi = [9.6, 24.0, 1.0]\nboundary = { x = \"periodic\", y = \"wall\", z = \"periodic\" }\n[gravity]\nvector = [0.0, 0.0, 0.0]\n[[species]]\nname = \"disc\"\ndiameter = 2.0\ndensity = 0.3183098861837907\ncount = 40\n[particles]\ninit = \"lattice\"\nregion_lo = [0.0, 0.0, 0.0]\nregion_hi = [9.6, 24.0, 1.0]\nlattice_spacing = 1.2\nlattice_jitter = 0.3\ninitial_profile = \"couette\"\ninitial_temperature = 0.001\nseed = 1982\n[collision]\nrestitution = 0.6\nroughness = \"rough\"\ninertia_factor = 0.5\ncontact_duration = 1.0e-4\n[walls.ylo]\nrestitution = 0.8\ncondition = \"no_slip\"\n[walls.yhi]\nrestitution = 0.8\ncondition = \"no_slip\"\nvelocity = [1.0, 0.0, 0.0]\n[servo]\nnormal_stress = 9.84375e-4\nkeep_shear_rate = true\nscale_width = true\n[run]\nduration = 3000.0\n[output]\ninterval = 10.0\naverage_start = 1000.0";
+const char* kCouette =
+    "[engine]\nkind = \"edmd\"\ndimension = 2\n[domain]\nlo = [0.0, 0.0, 0.0]\nhi = [9.6, 24.0, 1.0]\nboundary = { x = "
+    "\"periodic\", y = \"wall\", z = \"periodic\" }\n[gravity]\nvector = [0.0, 0.0, 0.0]\n[[species]]\nname = "
+    "\"disc\"\ndiameter = 2.0\ndensity = 0.3183098861837907\ncount = 40\n[particles]\ninit = \"lattice\"\nregion_lo = "
+    "[0.0, 0.0, 0.0]\nregion_hi = [9.6, 24.0, 1.0]\nlattice_spacing = 1.2\nlattice_jitter = 0.3\ninitial_profile = "
+    "\"couette\"\ninitial_temperature = 0.001\nseed = 1982\n[collision]\nrestitution = 0.6\nroughness = "
+    "\"rough\"\ninertia_factor = 0.5\ncontact_duration = 1.0e-4\n[walls.ylo]\nrestitution = 0.8\ncondition = "
+    "\"no_slip\"\n[walls.yhi]\nrestitution = 0.8\ncondition = \"no_slip\"\nvelocity = [1.0, 0.0, "
+    "0.0]\n[servo]\nnormal_stress = 9.84375e-4\nkeep_shear_rate = true\nscale_width = true\n[run]\nduration = "
+    "3000.0\n[output]\ninterval = 10.0\naverage_start = 1000.0";
 constexpr double kTarget = 9.84375e-4;
 
 }  // namespace
@@ -59,7 +68,8 @@ TEST(EdmdCouetteServo, WallStressSettlesOnTheTargetWithFixedAspectAndShearRate) 
 TEST(EdmdCouetteServo, SymmetricServoGivesEqualTemperaturesAtTheTwoWalls) {
   std::vector<double> ratios;
   for (const int seed : {1, 2, 3, 4}) {
-    const CaseConfig c = load_case_from_string(kCouette, "couette.toml", {"particles.seed=" + std::to_string(seed), "servo.shear_rate_walls=\"both\""});
+    const CaseConfig c = load_case_from_string(
+        kCouette, "couette.toml", {"particles.seed=" + std::to_string(seed), "servo.shear_rate_walls=\"both\""});
     edmd::EdmdEngine<2> e(edmd::build_edmd_state(c));
     observe::StripProfile profile(2, 12);
     const auto& walls = e.state().walls;

@@ -51,7 +51,8 @@ friction = 0.0
 [run]
 duration = 1.0
 collision_steps = %d
-)", seed, collision_steps);
+)",
+                seed, collision_steps);
   return text;
 }
 
@@ -68,53 +69,56 @@ GasRun run_gas(int collision_steps, double duration, int seed) {
   const CaseConfig c = load_case_from_string(gas_case(collision_steps, seed), "gas.toml");
   auto engine = test::engine_for(c, 1);
   GasRun out;
-  std::visit([&](auto& e) {
-    const auto& p = e.state().particles;
-    const double k1 = c.contact.parameters.at("k1");
-    const std::size_t n = p.size();
-    auto energy = [&] {
-      double kinetic = 0.0, spring = 0.0;
-      for (std::size_t i = 0; i < n; ++i) kinetic += 0.5 * p.mass[i] * norm2(p.velocity[i]);
-      // Every touching pair is on the engine's half neighbor list (it keeps a skin), once.
-      const auto& pairs = e.pairs();
-      const auto shifts = e.state().box.shift_table();
-      for (std::size_t i = 0; i < n; ++i)
-        for (std::uint32_t k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k) {
-          const std::uint32_t j = pairs.partner[k];
-          const double overlap = p.radius[i] + p.radius[j] - norm(p.position[i] - p.position[j] - shifts[pairs.shift[k]]);
-          if (overlap > 0.0) spring += 0.5 * k1 * overlap * overlap;
+  std::visit(
+      [&](auto& e) {
+        const auto& p = e.state().particles;
+        const double k1 = c.contact.parameters.at("k1");
+        const std::size_t n = p.size();
+        auto energy = [&] {
+          double kinetic = 0.0, spring = 0.0;
+          for (std::size_t i = 0; i < n; ++i) kinetic += 0.5 * p.mass[i] * norm2(p.velocity[i]);
+          // Every touching pair is on the engine's half neighbor list (it keeps a skin), once.
+          const auto& pairs = e.pairs();
+          const auto shifts = e.state().box.shift_table();
+          for (std::size_t i = 0; i < n; ++i)
+            for (std::uint32_t k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k) {
+              const std::uint32_t j = pairs.partner[k];
+              const double overlap =
+                  p.radius[i] + p.radius[j] - norm(p.position[i] - p.position[j] - shifts[pairs.shift[k]]);
+              if (overlap > 0.0) spring += 0.5 * k1 * overlap * overlap;
+            }
+          return kinetic + spring;
+        };
+        auto momentum = [&] {
+          Vec3 total;
+          double scale = 0.0;
+          for (std::size_t i = 0; i < n; ++i) {
+            total += p.mass[i] * p.velocity[i];
+            scale += p.mass[i] * norm(p.velocity[i]);
+          }
+          return std::pair{total, scale};
+        };
+        const double e0 = energy();
+        const auto [p0, scale0] = momentum();
+        out.time_step = e.state().time_step;
+        const long steps = std::lround(duration / out.time_step);
+        double last = e0, sum_squares = 0.0;
+        for (long k = 0; k < steps; ++k) {
+          e.step();
+          const double now = energy();
+          if ((k + 1) % collision_steps == 0) {
+            sum_squares += (now - last) * (now - last);
+            last = now;
+            ++out.intervals;
+          }
+          out.contact_steps += e.statistics().contacts;
+          out.max_energy_error = std::max(out.max_energy_error, std::fabs(now - e0) / e0);
+          const auto [pk, scale] = momentum();
+          out.max_momentum_error = std::max(out.max_momentum_error, norm(pk - p0) / scale0);
         }
-      return kinetic + spring;
-    };
-    auto momentum = [&] {
-      Vec3 total;
-      double scale = 0.0;
-      for (std::size_t i = 0; i < n; ++i) {
-        total += p.mass[i] * p.velocity[i];
-        scale += p.mass[i] * norm(p.velocity[i]);
-      }
-      return std::pair{total, scale};
-    };
-    const double e0 = energy();
-    const auto [p0, scale0] = momentum();
-    out.time_step = e.state().time_step;
-    const long steps = std::lround(duration / out.time_step);
-    double last = e0, sum_squares = 0.0;
-    for (long k = 0; k < steps; ++k) {
-      e.step();
-      const double now = energy();
-      if ((k + 1) % collision_steps == 0) {
-        sum_squares += (now - last) * (now - last);
-        last = now;
-        ++out.intervals;
-      }
-      out.contact_steps += e.statistics().contacts;
-      out.max_energy_error = std::max(out.max_energy_error, std::fabs(now - e0) / e0);
-      const auto [pk, scale] = momentum();
-      out.max_momentum_error = std::max(out.max_momentum_error, norm(pk - p0) / scale0);
-    }
-    out.rms_increment = std::sqrt(sum_squares / out.intervals) / e0;
-  }, engine);
+        out.rms_increment = std::sqrt(sum_squares / out.intervals) / e0;
+      },
+      engine);
   return out;
 }
 

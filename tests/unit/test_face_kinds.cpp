@@ -14,12 +14,14 @@ namespace {
 
 std::string bed(const std::string& engine, const std::string& y_faces) {
   return R"([engine]
-kind = ")" + engine + R"("
+kind = ")" +
+         engine + R"("
 dimension = 3
 [domain]
 lo = [0.0, 0.0, 0.0]
 hi = [0.02, 0.05, 0.02]
-boundary = { x = "periodic", y = )" + y_faces + R"(, z = "periodic" }
+boundary = { x = "periodic", y = )" +
+         y_faces + R"(, z = "periodic" }
 [[species]]
 name = "glass"
 diameter = 0.003

@@ -85,7 +85,8 @@ density = 2490.0
 
 [particles]
 init = "file"
-file = ")" + (folder.path / "particles.csv").string() + R"("
+file = ")" + (folder.path / "particles.csv").string() +
+                           R"("
 
 [contact]
 k1 = 1.0e6
@@ -127,7 +128,8 @@ TEST(FaultChecks, DemEngineNamesTheParticleStepAndTimeOfANonFiniteState) {
           EXPECT_NE(full.find("is too large for k1 = 1e+06 N/m"), std::string::npos) << full;
           char suggested[64];
           std::snprintf(suggested, sizeof suggested, "suggests dt <= %.4g s",
-                        dem::WaltonBraun::time_step(dem::WaltonBraun::make(1.0e6, 0.9, 1.0, 0.0), {0.5 * d.reference_mass, 0.0, 0.0}, 20));
+                        dem::WaltonBraun::time_step(dem::WaltonBraun::make(1.0e6, 0.9, 1.0, 0.0),
+                                                    {0.5 * d.reference_mass, 0.0, 0.0}, 20));
           EXPECT_NE(full.find("time-step bound with n = 20 steps per collision"), std::string::npos) << full;
           EXPECT_NE(full.find(suggested), std::string::npos) << full << " lacks " << suggested;
         }

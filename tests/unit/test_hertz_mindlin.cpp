@@ -57,7 +57,8 @@ std::string impact_case(const Material& m, double radius, const std::string& con
     << "[gravity]\nvector = [0.0, 0.0, 0.0]\n"
     << "[[species]]\nname = \"" << m.name << "\"\ndiameter = " << 2.0 * radius << "\ndensity = " << m.density
     << "\ncount = 0\nyoungs_modulus = " << m.youngs_modulus << "\npoisson_ratio = " << m.poisson_ratio << "\n"
-    << "[contact]\nmodel = \"hertz_mindlin\"\n" << contact << "\n"
+    << "[contact]\nmodel = \"hertz_mindlin\"\n"
+    << contact << "\n"
     << "[run]\nduration = 1.0\ntime_step = " << time_step << "\nskin = " << 0.1 * radius << "\n";
   return t.str();
 }
@@ -75,26 +76,29 @@ Observed run_impact(const std::string& case_text, const std::string& rows, bool 
   text += "[particles]\ninit = \"file\"\nfile = \"" + csv.path() + "\"\n";
   auto engine = test::engine_from_toml(text, "impact.toml", 1);
   Observed o;
-  std::visit([&](auto& e) {
-    auto& p = e.state().particles;
-    bool touched = false;
-    long steps_with_force = 0;
-    for (long step = 0; step < 2000000; ++step) {
-      e.step();
-      const double overlap = against_wall ? radius - p.position[0][1] : 2.0 * radius - norm(p.position[0] - p.position[1]);
-      const double force = norm(p.force[0]);
-      if (force > 0.0) {
-        touched = true;
-        ++steps_with_force;
-      }
-      o.max_overlap = std::max(o.max_overlap, overlap);
-      o.max_force = std::max(o.max_force, force);
-      if (touched && overlap < 0.0) break;
-    }
-    o.duration = steps_with_force * e.state().time_step;
-    o.velocity = p.velocity[0];
-    o.angular_velocity = p.angular_velocity[0];
-  }, engine);
+  std::visit(
+      [&](auto& e) {
+        auto& p = e.state().particles;
+        bool touched = false;
+        long steps_with_force = 0;
+        for (long step = 0; step < 2000000; ++step) {
+          e.step();
+          const double overlap =
+              against_wall ? radius - p.position[0][1] : 2.0 * radius - norm(p.position[0] - p.position[1]);
+          const double force = norm(p.force[0]);
+          if (force > 0.0) {
+            touched = true;
+            ++steps_with_force;
+          }
+          o.max_overlap = std::max(o.max_overlap, overlap);
+          o.max_force = std::max(o.max_force, force);
+          if (touched && overlap < 0.0) break;
+        }
+        o.duration = steps_with_force * e.state().time_step;
+        o.velocity = p.velocity[0];
+        o.angular_velocity = p.angular_velocity[0];
+      },
+      engine);
   return o;
 }
 
@@ -121,7 +125,8 @@ TEST(ChungOoi, Test1ElasticImpactOfTwoSpheresIsHertzian) {
     const HertzImpact h = hertz(e_star, 0.5 * radius, 0.5 * sphere_mass(m, radius), 2.0 * v);
     const double box = 0.2, y = 0.1;
     const std::string text = impact_case(m, radius, "restitution = 1.0", box, h.duration / kStepsPerContact);
-    const std::string rows = row(m, {0.1 - radius - 1e-5, y, 0.1}, {v, 0.0, 0.0}) + row(m, {0.1 + radius + 1e-5, y, 0.1}, {-v, 0.0, 0.0});
+    const std::string rows =
+        row(m, {0.1 - radius - 1e-5, y, 0.1}, {v, 0.0, 0.0}) + row(m, {0.1 + radius + 1e-5, y, 0.1}, {-v, 0.0, 0.0});
     const Observed o = run_impact(text, rows, false, radius);
     EXPECT_NEAR(o.max_overlap, h.overlap, 1e-3 * h.overlap) << m.name;
     EXPECT_NEAR(o.max_force, h.force, 1e-3 * h.force) << m.name;
@@ -225,8 +230,10 @@ TEST(ChungOoi, ImpactsWithSpinFollowSliding) {
   const double e_star = m.youngs_modulus / (1.0 - m.poisson_ratio * m.poisson_ratio);
   const HertzImpact h = hertz(e_star, radius, sphere_mass(m, radius), vn);
   for (double w0 : {-8.0, -5.0, 5.0, 8.0}) {  // rad/s: R w0 = 0.5-0.8 m/s against (7/2) mu (1 + e) v_n = 0.42
-    const std::string text = impact_case(m, radius, "restitution = 0.5\nfriction = 0.4", 1.0, h.duration / kStepsPerContact);
-    const Observed o = run_impact(text, row(m, {0.5, radius + 1e-6, 0.5}, {0.0, -vn, 0.0}, {0.0, 0.0, w0}), true, radius);
+    const std::string text =
+        impact_case(m, radius, "restitution = 0.5\nfriction = 0.4", 1.0, h.duration / kStepsPerContact);
+    const Observed o =
+        run_impact(text, row(m, {0.5, radius + 1e-6, 0.5}, {0.0, -vn, 0.0}, {0.0, 0.0, w0}), true, radius);
     // The patch slides along +x for w0 > 0 (slip = v_x + R w_z): friction pushes the centre along -x.
     const double sign = w0 > 0.0 ? 1.0 : -1.0;
     const double dv = mu * (1.0 + e) * vn;
@@ -262,7 +269,8 @@ TEST(HertzMindlin, DampingConstantGivesTheRestitutionExactly) {
 // A wall of its own material: E* combines both bodies' compliances, so a wall as stiff as the
 // sphere gives the peak overlap of two spheres' E* (1/E* = 2 (1 - nu^2) / E) at R* = R.
 TEST(HertzMindlin, WallOfItsOwnMaterialCombinesCompliances) {
-  const HertzMindlin::Params rigid = HertzMindlin::make(7.0e10, 0.3, 1.0, 0.0, std::numeric_limits<double>::infinity(), 0.0);
+  const HertzMindlin::Params rigid =
+      HertzMindlin::make(7.0e10, 0.3, 1.0, 0.0, std::numeric_limits<double>::infinity(), 0.0);
   const HertzMindlin::Params same = HertzMindlin::make(7.0e10, 0.3, 1.0, 0.0, 7.0e10, 0.3);
   EXPECT_DOUBLE_EQ(rigid.e_star, 7.0e10 / 0.91);
   EXPECT_DOUBLE_EQ(same.e_star, 7.0e10 / 1.82);

@@ -21,17 +21,17 @@ using namespace grainflow::dem;
 
 namespace {
 
-constexpr double kG = 9.81;        // m/s^2
-constexpr double kMu = 0.5;        // wall friction
+constexpr double kG = 9.81;  // m/s^2
+constexpr double kMu = 0.5;  // wall friction
 constexpr double kDiameter = 0.002;
 constexpr double kDensity = 2500.0;
 constexpr double kStiffness = 1.0e4;  // N/m: K1 (walton_braun) or kn (linear_dashpot)
 constexpr double kDuration = 0.05;    // s of rolling or sliding
 
 struct Trajectory {
-  double displacement = 0.0;  // m along the slope (x), unwrapped
-  double spin_angle = 0.0;    // rad about z, integrated from omega_z
-  double velocity = 0.0;      // m/s along x at the end
+  double displacement = 0.0;      // m along the slope (x), unwrapped
+  double spin_angle = 0.0;        // rad about z, integrated from omega_z
+  double velocity = 0.0;          // m/s along x at the end
   double angular_velocity = 0.0;  // rad/s about z at the end
   double time = 0.0;
   double radius = 0.0;
@@ -50,38 +50,39 @@ Trajectory run_incline(const std::string& model, int dimension, double theta) {
   row.precision(17);
   row << "glass,0.01," << y0 << ",0.01,0,0,0\n";
   const test::ParticleFile csv("incline.csv", row.str());
-  const std::string contact = model == "walton_braun"
-      ? "model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.9\n"
-      : "model = \"linear_dashpot\"\nkn = 1.0e4\ngamma_n = 500.0\n";
+  const std::string contact = model == "walton_braun" ? "model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.9\n"
+                                                      : "model = \"linear_dashpot\"\nkn = 1.0e4\ngamma_n = 500.0\n";
   const std::string wall = model == "walton_braun" ? "restitution = 0.5\n" : "gamma_n = 500.0\n";
   const std::string text =
       test::dem_incline_case(kG, theta, csv.path(), contact + "friction = 0.0\n", "friction = 0.5\n" + wall, dimension);
   auto engine = test::engine_from_toml(text, testing::TempDir() + "incline.toml", 1);
   Trajectory out;
-  std::visit([&](auto& e) {
-    const auto& p = e.state().particles;
-    const double dt = e.state().time_step;
-    const double x0 = e.unwrapped_position(0).x;
-    const long steps = std::lround(kDuration / dt);
-    const double z0 = p.position[0].z;
-    for (long k = 0; k < steps; ++k) {
-      const double before = p.angular_velocity[0].z;
-      e.step();
-      out.spin_angle += 0.5 * dt * (before + p.angular_velocity[0].z);  // trapezoid: O(dt^2)
-      // A disc has no force off its plane and no torque in it: exactly, not to round-off.
-      if (dimension == 2 && (p.position[0].z != z0 || p.velocity[0].z != 0.0 || p.angular_velocity[0].x != 0.0 ||
-                             p.angular_velocity[0].y != 0.0))
-        out.left_plane = true;
-    }
-    out.mass = p.mass[0];
-    out.inertia_factor = 1.0 / (p.inv_inertia[0] * p.mass[0] * p.radius[0] * p.radius[0]);
-    out.displacement = e.unwrapped_position(0).x - x0;
-    out.velocity = p.velocity[0].x;
-    out.angular_velocity = p.angular_velocity[0].z;
-    out.time = e.state().time;
-    out.radius = p.radius[0];
-    out.time_step = dt;
-  }, engine);
+  std::visit(
+      [&](auto& e) {
+        const auto& p = e.state().particles;
+        const double dt = e.state().time_step;
+        const double x0 = e.unwrapped_position(0).x;
+        const long steps = std::lround(kDuration / dt);
+        const double z0 = p.position[0].z;
+        for (long k = 0; k < steps; ++k) {
+          const double before = p.angular_velocity[0].z;
+          e.step();
+          out.spin_angle += 0.5 * dt * (before + p.angular_velocity[0].z);  // trapezoid: O(dt^2)
+          // A disc has no force off its plane and no torque in it: exactly, not to round-off.
+          if (dimension == 2 && (p.position[0].z != z0 || p.velocity[0].z != 0.0 || p.angular_velocity[0].x != 0.0 ||
+                                 p.angular_velocity[0].y != 0.0))
+            out.left_plane = true;
+        }
+        out.mass = p.mass[0];
+        out.inertia_factor = 1.0 / (p.inv_inertia[0] * p.mass[0] * p.radius[0] * p.radius[0]);
+        out.displacement = e.unwrapped_position(0).x - x0;
+        out.velocity = p.velocity[0].x;
+        out.angular_velocity = p.angular_velocity[0].z;
+        out.time = e.state().time;
+        out.radius = p.radius[0];
+        out.time_step = dt;
+      },
+      engine);
   return out;
 }
 

@@ -33,7 +33,8 @@ count = 60
 [particles]
 init = "lattice"
 initial_velocity = [0.5, 0.0, 0.0]
-initial_profile = ")" + profile + R"("
+initial_profile = ")" +
+         profile + R"("
 [contact]
 model = "linear_dashpot"
 kn = 1.0e4

@@ -23,7 +23,7 @@ using namespace grainflow::dem;
 namespace {
 
 constexpr double kE = 1.0e8, kNu = 0.25, kGamma = 0.05;  // Pa, -, J/m^2
-constexpr double kRadius = 1.0e-3;                        // m, the sphere
+constexpr double kRadius = 1.0e-3;                       // m, the sphere
 constexpr double kDensity = 2500.0;
 
 Jkr::Params params(double restitution, double surface_energy) {
@@ -58,7 +58,8 @@ TEST(Jkr, ForceCurveHasJohnsonKendallRobertsLandmarks) {
   // The minimum over a fine scan of the stable branch, from the neck to zero load.
   double lowest = 0.0;
   const int n = 200000;
-  for (int i = 0; i <= n; ++i) lowest = std::min(lowest, force_at(p, detach + (a0 * a0 / (3.0 * r) - detach) * i / n, r));
+  for (int i = 0; i <= n; ++i)
+    lowest = std::min(lowest, force_at(p, detach + (a0 * a0 / (3.0 * r) - detach) * i / n, r));
   EXPECT_NEAR(lowest, -fc, 1e-8 * fc);
   // Without surface energy it is Hertz: 4/3 E* sqrt(R*) delta^3/2.
   const Jkr::Params hertz = params(1.0, 0.0);
@@ -75,7 +76,8 @@ TEST(Jkr, ElasticEnergyIsThePotentialOfTheForce) {
   const Jkr::State memory;
   for (double overlap : {0.9 * detach, 0.3 * detach, 1e-9, -0.5 * detach, -3.0 * detach, -20.0 * detach}) {
     const double h = 1e-4 * std::fabs(detach);
-    const double slope = (Jkr::elastic_energy(p, memory, overlap + h, r) - Jkr::elastic_energy(p, memory, overlap - h, r)) / (2 * h);
+    const double slope =
+        (Jkr::elastic_energy(p, memory, overlap + h, r) - Jkr::elastic_energy(p, memory, overlap - h, r)) / (2 * h);
     EXPECT_NEAR(slope, force_at(p, overlap, r), 1e-6 * fc) << "overlap " << overlap;
   }
 }
@@ -114,28 +116,31 @@ TEST(Jkr, SphereHangsFromACeilingBelowThePullOffForceAndFallsAbove) {
     row << "glass,0.01," << 0.02 - (kRadius - start) << ",0.01,0,0,0\n";
     const test::ParticleFile csv("hanging.csv", row.str());
     const double g = load * fc / mass;
-    auto engine = test::engine_from_toml(sphere_case(csv.path(), -g, 0.01, "yhi", 20), testing::TempDir() + "hang.toml", 1);
-    std::visit([&](auto& eng) {
-      const auto& s = eng.state().particles;
-      const double y0 = s.position[0].y;
-      // Held: settled well within 0.05 s (~4 damping times). Pulled off: the creep to the neck
-      // takes ~8 ms; then 10 ms of free fall (1 mm).
-      double detached = -1.0;
-      while (eng.state().time < 0.05) {
-        eng.step();
-        if (detached < 0.0 && eng.statistics().wall_contacts == 0) detached = eng.state().time;
-        if (detached > 0.0 && eng.state().time > detached + 0.01) break;
-      }
-      const double drop = y0 - s.position[0].y;
-      if (load < 1.0) {
-        EXPECT_EQ(eng.statistics().wall_contacts, 1) << "fell off at " << load << " F_c";
-        EXPECT_LT(drop, 10.0 * std::fabs(Jkr::detach_overlap(p, r)) + start);
-        EXPECT_LT(std::fabs(s.velocity[0].y), 1e-6);
-      } else {
-        EXPECT_EQ(eng.statistics().wall_contacts, 0) << "held " << load << " F_c";
-        EXPECT_GT(drop, 1e-4) << "still at the ceiling under " << load << " F_c";
-      }
-    }, engine);
+    auto engine =
+        test::engine_from_toml(sphere_case(csv.path(), -g, 0.01, "yhi", 20), testing::TempDir() + "hang.toml", 1);
+    std::visit(
+        [&](auto& eng) {
+          const auto& s = eng.state().particles;
+          const double y0 = s.position[0].y;
+          // Held: settled well within 0.05 s (~4 damping times). Pulled off: the creep to the neck
+          // takes ~8 ms; then 10 ms of free fall (1 mm).
+          double detached = -1.0;
+          while (eng.state().time < 0.05) {
+            eng.step();
+            if (detached < 0.0 && eng.statistics().wall_contacts == 0) detached = eng.state().time;
+            if (detached > 0.0 && eng.state().time > detached + 0.01) break;
+          }
+          const double drop = y0 - s.position[0].y;
+          if (load < 1.0) {
+            EXPECT_EQ(eng.statistics().wall_contacts, 1) << "fell off at " << load << " F_c";
+            EXPECT_LT(drop, 10.0 * std::fabs(Jkr::detach_overlap(p, r)) + start);
+            EXPECT_LT(std::fabs(s.velocity[0].y), 1e-6);
+          } else {
+            EXPECT_EQ(eng.statistics().wall_contacts, 0) << "held " << load << " F_c";
+            EXPECT_GT(drop, 1e-4) << "still at the ceiling under " << load << " F_c";
+          }
+        },
+        engine);
   }
 }
 
@@ -160,16 +165,18 @@ TEST(Jkr, ElasticImpactSticksBelowTheHysteresisSpeedAndReboundsAbove) {
     const test::ParticleFile csv("impact.csv", row.str());
     const std::string text = sphere_case(csv.path(), 0.0, 1.0, "ylo", 20) + "time_step = 1.0e-7\n";
     auto engine = test::engine_from_toml(text, testing::TempDir() + "impact.toml", 1);
-    std::visit([&](auto& eng) {
-      while (eng.state().time < 3e-3) eng.step();
-      const double vy = eng.state().particles.velocity[0].y;
-      if (ratio < 1.0) {
-        EXPECT_EQ(eng.statistics().wall_contacts, 1) << "bounced off at " << ratio << " v_s";
-      } else {
-        EXPECT_EQ(eng.statistics().wall_contacts, 0) << "stuck at " << ratio << " v_s";
-        EXPECT_NEAR(vy / v, std::sqrt(1.0 - 1.0 / (ratio * ratio)), 5e-3) << ratio << " v_s";
-      }
-    }, engine);
+    std::visit(
+        [&](auto& eng) {
+          while (eng.state().time < 3e-3) eng.step();
+          const double vy = eng.state().particles.velocity[0].y;
+          if (ratio < 1.0) {
+            EXPECT_EQ(eng.statistics().wall_contacts, 1) << "bounced off at " << ratio << " v_s";
+          } else {
+            EXPECT_EQ(eng.statistics().wall_contacts, 0) << "stuck at " << ratio << " v_s";
+            EXPECT_NEAR(vy / v, std::sqrt(1.0 - 1.0 / (ratio * ratio)), 5e-3) << ratio << " v_s";
+          }
+        },
+        engine);
     // The law's own head-on impact (check's line, the time step's duration) agrees.
     HeadOnImpact impact = on_wall;
     impact.speed = v;
@@ -227,7 +234,8 @@ TEST(Jkr, BondedPairOscillatesAtTheCurvesSlopeAndBoundsTheTimeStep) {
   const HeadOnImpact pair{mass, r, 0.01};
   EXPECT_DOUBLE_EQ(Jkr::bonded_half_period(p, pair), 0.5 * period);  // no friction: the normal mode
   EXPECT_LE(Jkr::time_step(p, pair, 40), 0.5 * period / 40.0);
-  const Jkr::Params frictional{HertzMindlin::make(kE, kNu, 1.0, 0.5, std::numeric_limits<double>::infinity(), 0.0), kGamma};
+  const Jkr::Params frictional{HertzMindlin::make(kE, kNu, 1.0, 0.5, std::numeric_limits<double>::infinity(), 0.0),
+                               kGamma};
   const double tangential = M_PI * std::sqrt(2.0 / 7.0 * mass / (8.0 * frictional.material.g_star * a0));
   EXPECT_DOUBLE_EQ(Jkr::bonded_half_period(frictional, pair), std::min(0.5 * period, tangential));
   // Without adhesion the bound is Hertz–Mindlin's.

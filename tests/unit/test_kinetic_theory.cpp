@@ -47,14 +47,16 @@ void expect_balances(const KineticTheoryParameters& p, const KineticTheoryProfil
   // the equation of state at the recorded nu and theta (checks the inversion nu(P, theta)).
   EXPECT_NEAR(r.pressure.front(), p.mass_holdup, 1e-12 * p.mass_holdup);
   for (std::size_t i = 0; i < n; i += 7)
-    EXPECT_NEAR(r.solids_fraction[i] * r.temperature[i] * pressure_factor(r.solids_fraction[i], p.restitution, p.contact_value),
-                r.pressure[i], 1e-10 * r.pressure[i]);
+    EXPECT_NEAR(
+        r.solids_fraction[i] * r.temperature[i] * pressure_factor(r.solids_fraction[i], p.restitution, p.contact_value),
+        r.pressure[i], 1e-10 * r.pressure[i]);
   // Energy: the floor's input is what the bed dissipates, Q(0) = integral of Gamma dY, and Q(0) is
   // the floor model's flux at theta(0). Gamma ~ nu^2 decays twice as fast as nu in the dilute part
   // (scale theta/2), so the trapezoid's bound is (2 * 0.02)^2/12 = 1.3e-4 relative: allow 3e-4.
   EXPECT_NEAR(trapezoid(r.Y, r.dissipation), r.floor_heat_flux, 3e-4 * std::fabs(r.floor_heat_flux) + 1e-12);
   EXPECT_DOUBLE_EQ(r.heat_flux.front(), r.floor_heat_flux);
-  EXPECT_NEAR(r.floor_heat_flux, floor_heat_flux(p.mass_holdup, r.temperature.front(), p.floor_variance, p.floor_restitution),
+  EXPECT_NEAR(r.floor_heat_flux,
+              floor_heat_flux(p.mass_holdup, r.temperature.front(), p.floor_variance, p.floor_restitution),
               1e-12 * std::fabs(r.floor_heat_flux) + 1e-15);
   // Natural flux scale: pressure times thermal speed at the floor.
   const double flux_scale = std::max(std::fabs(r.floor_heat_flux), p.mass_holdup * r.W.front());
@@ -73,7 +75,8 @@ void expect_balances(const KineticTheoryParameters& p, const KineticTheoryProfil
   }
   // The top condition: no heat leaves through the top.
   EXPECT_LT(std::fabs(r.top_heat_flux), 1e-6 * flux_scale);
-  EXPECT_NEAR(r.pressure.back(), p.top_pressure_fraction * p.mass_holdup, 1e-6 * p.top_pressure_fraction * p.mass_holdup);
+  EXPECT_NEAR(r.pressure.back(), p.top_pressure_fraction * p.mass_holdup,
+              1e-6 * p.top_pressure_fraction * p.mass_holdup);
   for (std::size_t i = 0; i < n; ++i) EXPECT_NEAR(r.W[i] * r.W[i], r.temperature[i], 1e-12 * r.temperature[i]);
 }
 
@@ -88,8 +91,10 @@ TEST(KineticTheoryClosures, ContactValues) {
   // continuous there, and diverges at random close packing.
   EXPECT_DOUBLE_EQ(contact_value(0.0, ContactValueModel::carnahan_starling), 1.0);
   for (double nu : {0.1, 0.3, 0.49})
-    EXPECT_DOUBLE_EQ(contact_value(nu, ContactValueModel::torquato), contact_value(nu, ContactValueModel::carnahan_starling));
-  EXPECT_NEAR(contact_value(0.49 + 1e-9, ContactValueModel::torquato), contact_value(0.49, ContactValueModel::torquato), 1e-6);
+    EXPECT_DOUBLE_EQ(contact_value(nu, ContactValueModel::torquato),
+                     contact_value(nu, ContactValueModel::carnahan_starling));
+  EXPECT_NEAR(contact_value(0.49 + 1e-9, ContactValueModel::torquato), contact_value(0.49, ContactValueModel::torquato),
+              1e-6);
   EXPECT_GT(contact_value(0.64 - 1e-9, ContactValueModel::torquato), 1e8);
   EXPECT_GT(contact_value(0.6, ContactValueModel::torquato), contact_value(0.6, ContactValueModel::carnahan_starling));
 }
@@ -173,7 +178,8 @@ TEST(KineticTheoryFloor, SmallAmplitudeLimit) {
   // energy input ~ <u^2> sqrt(T)): the error must be below a^2 times the terms' size (an O(1)
   // coefficient) and shrink tenfold with a^2.
   const double theta = 2.0, pressure = 3.0;
-  EXPECT_NEAR(floor_heat_flux(pressure, theta, 1e-30, 0.7), -2.0 * 0.3 * pressure * std::sqrt(theta / (2.0 * kPi)), 1e-12);
+  EXPECT_NEAR(floor_heat_flux(pressure, theta, 1e-30, 0.7), -2.0 * 0.3 * pressure * std::sqrt(theta / (2.0 * kPi)),
+              1e-12);
   for (const double ew : {1.0, 0.9, 0.5}) {
     double previous = 0.0;
     for (const double a2 : {1e-2, 1e-3}) {
@@ -285,7 +291,8 @@ TEST(KineticTheorySolver, NearlyElasticBedOverEnergyConservingFloor) {
   const double theta = r.temperature.front();
   EXPECT_GT(theta, 100.0);
   const double k0 = 75.0 / 384.0 * std::sqrt(kPi);
-  const double estimate = 4.0 * p.mass_holdup * p.floor_variance / std::sqrt(2.0 * kPi * theta) / (2.0 * k0 * std::sqrt(theta));
+  const double estimate =
+      4.0 * p.mass_holdup * p.floor_variance / std::sqrt(2.0 * kPi * theta) / (2.0 * k0 * std::sqrt(theta));
   const auto [lo, hi] = std::minmax_element(r.temperature.begin(), r.temperature.end());
   EXPECT_LT((*hi - *lo) / theta, 5.0 * estimate);
   EXPECT_GT((*hi - *lo) / theta, 0.0);  // not exactly isothermal: the bed does dissipate

@@ -24,7 +24,7 @@ struct Impact {
   double restitution = 0.0;  // separation / approach speed
   double duration = 0.0;     // s, between the zero crossings of the overlap
   double effective_mass = 0.0;
-  double time_step = 0.0;    // s, as the engine chose it
+  double time_step = 0.0;  // s, as the engine chose it
   LinearDashpot::Params params;
 };
 
@@ -61,33 +61,36 @@ gamma_n = %.17g
 [run]
 duration = 1.0
 collision_steps = %d
-)", 2500.0 * mass_ratio, csv.path().c_str(), gamma_n, steps);
+)",
+                2500.0 * mass_ratio, csv.path().c_str(), gamma_n, steps);
   auto engine = test::engine_from_toml(text, testing::TempDir() + "dashpot.toml", 1);
   Impact out;
-  std::visit([&](auto& e) {
-    auto& p = e.state().particles;
-    const double dt = e.state().time_step;
-    auto overlap = [&] {
-      return p.radius[0] + p.radius[1] - norm(e.state().box.minimum_image(p.position[0], p.position[1]));
-    };
-    auto relative_speed = [&] { return std::fabs(p.velocity[0].x - p.velocity[1].x); };
-    const double approach = relative_speed();
-    double previous = overlap(), start = -1.0, end = -1.0;
-    for (long k = 1; k < 1000000 && end < 0.0; ++k) {
-      e.step();
-      const double now = overlap();
-      // Zero crossings by linear interpolation between steps: O(dt^2) in time.
-      const double crossing = (k - 1 + previous / (previous - now)) * dt;
-      if (start < 0.0 && previous <= 0.0 && now > 0.0) start = crossing;
-      if (start >= 0.0 && previous > 0.0 && now <= 0.0) end = crossing;
-      previous = now;
-    }
-    e.step();  // out of contact: velocities are final
-    out.restitution = relative_speed() / approach;
-    out.duration = end - start;
-    out.effective_mass = 1.0 / (p.inv_mass[0] + p.inv_mass[1]);
-    out.time_step = dt;
-  }, engine);
+  std::visit(
+      [&](auto& e) {
+        auto& p = e.state().particles;
+        const double dt = e.state().time_step;
+        auto overlap = [&] {
+          return p.radius[0] + p.radius[1] - norm(e.state().box.minimum_image(p.position[0], p.position[1]));
+        };
+        auto relative_speed = [&] { return std::fabs(p.velocity[0].x - p.velocity[1].x); };
+        const double approach = relative_speed();
+        double previous = overlap(), start = -1.0, end = -1.0;
+        for (long k = 1; k < 1000000 && end < 0.0; ++k) {
+          e.step();
+          const double now = overlap();
+          // Zero crossings by linear interpolation between steps: O(dt^2) in time.
+          const double crossing = (k - 1 + previous / (previous - now)) * dt;
+          if (start < 0.0 && previous <= 0.0 && now > 0.0) start = crossing;
+          if (start >= 0.0 && previous > 0.0 && now <= 0.0) end = crossing;
+          previous = now;
+        }
+        e.step();  // out of contact: velocities are final
+        out.restitution = relative_speed() / approach;
+        out.duration = end - start;
+        out.effective_mass = 1.0 / (p.inv_mass[0] + p.inv_mass[1]);
+        out.time_step = dt;
+      },
+      engine);
   out.params = {1.0e4, 0.0, gamma_n, 0.0, 0.0};
   return out;
 }
@@ -200,9 +203,9 @@ TEST(LinearDashpot, CoulombLimitAndTangentPlaneHoldOnRandomHistories) {
       Vec3 turned = normal + 0.05 * random_vector();
       normal = turned * (1.0 / norm(turned));
       Vec3 slip = 0.5 * random_vector();
-      slip -= dot(slip, normal) * normal;  // the engine's slip velocity is tangential
+      slip -= dot(slip, normal) * normal;                       // the engine's slip velocity is tangential
       const double overlap = 1.0e-5 * (0.5 + 0.5 * unit(rng));  // kn overlap = 0 .. 0.1 N
-      const double normal_velocity = 5.0 * unit(rng);  // m_eff gamma_n |v_n| up to 0.025 N
+      const double normal_velocity = 5.0 * unit(rng);           // m_eff gamma_n |v_n| up to 0.025 N
       const double dt = 1.0e-6;
       // Trial (sticking) force from the previous shear, carried into the current plane.
       Vec3 trial_shear = s.shear + dt * slip;

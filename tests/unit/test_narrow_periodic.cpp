@@ -20,13 +20,14 @@ namespace {
 constexpr double kDiameter = 0.003;
 
 // Spheres falling onto a frictional floor, shaken from t = 0.1 s (Gamma = 3.6, so the packed
-// spheres keep moving and the neighbour lists keep being rebuilt under touching contacts), in a cell `width` wide along x (periodic) and 4 d along z
-// (periodic), listed in `rows`; `copies` side by side along x.
+// spheres keep moving and the neighbour lists keep being rebuilt under touching contacts), in a cell `width` wide along
+// x (periodic) and 4 d along z (periodic), listed in `rows`; `copies` side by side along x.
 std::string cell_case(double width, const std::string& file) {
   return R"(
 [domain]
 lo = [0.0, 0.0, 0.0]
-hi = [)" + std::to_string(width) + R"(, 0.04, 0.012]
+hi = [)" +
+         std::to_string(width) + R"(, 0.04, 0.012]
 boundary = { x = "periodic", y = ["wall", "open"], z = "periodic" }
 [gravity]
 vector = [0.0, -9.81, 0.0]
@@ -36,7 +37,8 @@ diameter = 0.003
 density = 2490.0
 [particles]
 init = "file"
-file = ")" + file + R"("
+file = ")" +
+         file + R"("
 [contact]
 model = "walton_braun"
 k1 = 1.0e4
@@ -91,7 +93,8 @@ CellRun run_cell(const std::vector<Sphere>& spheres, double width, int copies, d
           for (std::size_t i = 0; i + 1 < pairs.offsets.size(); ++i)
             for (std::uint32_t k = pairs.offsets[i]; k < pairs.offsets[i + 1]; ++k)
               for (std::uint32_t q = k + 1; q < pairs.offsets[i + 1]; ++q)
-                now += pairs.partner[q] == pairs.partner[k] && e.contacts().pair_touching[k] && e.contacts().pair_touching[q];
+                now += pairs.partner[q] == pairs.partner[k] && e.contacts().pair_touching[k] &&
+                       e.contacts().pair_touching[q];
           out.multiple_image_contacts = std::max(out.multiple_image_contacts, now);
         }
         out.particles = e.state().particles;

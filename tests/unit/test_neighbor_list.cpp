@@ -39,9 +39,9 @@ std::set<PairKey> pair_set(const ParticleStore& p, const NeighborPairs& list) {
     for (std::uint32_t k = list.offsets[i]; k < list.offsets[i + 1]; ++k) {
       const std::uint32_t j = list.partner[k];
       if (i == j)
-        EXPECT_GT(list.shift[k], PeriodicBox::kNoShift) << "a particle's own image must be listed in the positive direction";
-      else
-        EXPECT_LT(p.id[i], p.id[j]) << "a pair must be listed under the smaller id";
+        EXPECT_GT(list.shift[k], PeriodicBox::kNoShift)
+            << "a particle's own image must be listed in the positive direction";
+      else EXPECT_LT(p.id[i], p.id[j]) << "a pair must be listed under the smaller id";
       const bool inserted = out.emplace(p.id[i], p.id[j], list.shift[k]).second;
       EXPECT_TRUE(inserted) << "pair " << p.id[i] << "-" << p.id[j] << " listed twice";
     }
@@ -60,7 +60,8 @@ std::set<PairKey> brute_force(const ParticleStore& p, const PeriodicBox& box, do
   for (int axis = 0; axis < 3; ++axis) {
     reach[axis] = 0;
     if (box.periodic[axis])
-      while (reach[axis] < PeriodicBox::kMaxImage && reach[axis] * box.length(axis) < 2.0 * largest + skin) ++reach[axis];
+      while (reach[axis] < PeriodicBox::kMaxImage && reach[axis] * box.length(axis) < 2.0 * largest + skin)
+        ++reach[axis];
   }
   for (std::size_t a = 0; a < p.size(); ++a)
     for (std::size_t b = 0; b < p.size(); ++b) {
@@ -287,8 +288,8 @@ TEST(NeighborList, CellGridFindsExactlyTheAllPairsSet) {
 TEST(NeighborList, ARanksRegionGridFindsTheWholeBoxPairsAmongItsParticles) {
   const double max_radius = 0.0015, skin = 0.00045, w = 2.0 * max_radius + skin;
   for (const bool periodic_x : {true, false}) {
-    const RandomConfig config{"slab", {0.0, 0.0, 0.0}, {0.06, 0.02, 0.015}, {periodic_x, false, true}, 1200,
-                              max_radius, skin, 0.004};
+    const RandomConfig config{
+        "slab", {0.0, 0.0, 0.0}, {0.06, 0.02, 0.015}, {periodic_x, false, true}, 1200, max_radius, skin, 0.004};
     PeriodicBox box;
     box.lo = config.lo;
     box.hi = config.hi;
@@ -300,8 +301,9 @@ TEST(NeighborList, ARanksRegionGridFindsTheWholeBoxPairsAmongItsParticles) {
       for (std::size_t i = 0; i < all.size(); ++i) {
         const double x = all.position[i].x;
         double gap = std::max({a - x, x - b, 0.0});
-        if (periodic_x) gap = std::min({gap, std::max({a - (x - 0.06), x - 0.06 - b, 0.0}),
-                                        std::max({a - (x + 0.06), x + 0.06 - b, 0.0})});
+        if (periodic_x)
+          gap = std::min(
+              {gap, std::max({a - (x - 0.06), x - 0.06 - b, 0.0}), std::max({a - (x + 0.06), x + 0.06 - b, 0.0})});
         if (!periodic_x && ((a == 0.0 && x < a) || (b == 0.06 && x > b))) gap = 0.0;  // end slabs reach on
         if (gap < w) held.push_back(static_cast<std::uint32_t>(i));
       }
@@ -327,7 +329,8 @@ TEST(NeighborList, SparseHugeBoxGetsWiderCellsAndTheSamePairs) {
   // number 4096^3 (the per-axis cap), 275 GB of cell starts. The grid widens its cells instead
   // (at most 32768 here) and must still find exactly the brute-force pairs, across the periodic
   // faces too (the cluster straddles the box's corner).
-  const RandomConfig config{"cluster", {-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}, {true, true, true}, 400, 0.0015, 0.00045, 0.0};
+  const RandomConfig config{
+      "cluster", {-0.01, -0.01, -0.01}, {0.01, 0.01, 0.01}, {true, true, true}, 400, 0.0015, 0.00045, 0.0};
   PeriodicBox cluster;
   cluster.lo = config.lo;
   cluster.hi = config.hi;
@@ -349,7 +352,8 @@ TEST(NeighborList, SparseHugeBoxGetsWiderCellsAndTheSamePairs) {
 }
 
 TEST(NeighborList, EveryOverlappingPairIsListedAtEveryStep) {
-  for (const auto& [name, text, steps] : {std::tuple{"periodic gas", kGas, 600}, std::tuple{"bed on a shaken bumpy floor", kBed, 1500}}) {
+  for (const auto& [name, text, steps] :
+       {std::tuple{"periodic gas", kGas, 600}, std::tuple{"bed on a shaken bumpy floor", kBed, 1500}}) {
     const CaseConfig c = load_case_from_string(text, std::string(name) + ".toml");
     DemEngineVariant variant = test::engine_for(c, 2);
     auto& engine = std::get<DemEngine<WaltonBraun>>(variant);
@@ -414,7 +418,8 @@ skin = 1e-7
   };
   auto run = [&](int sort_every, long wipe_at_contact_step) {
     Record rec;
-    DemEngineVariant variant = test::engine_from_toml(text, "two_spheres.toml", 1, {"run.sort_every=" + std::to_string(sort_every)});
+    DemEngineVariant variant =
+        test::engine_from_toml(text, "two_spheres.toml", 1, {"run.sort_every=" + std::to_string(sort_every)});
     auto& engine = std::get<DemEngine<WaltonBraun>>(variant);
     bool was_touching = false;
     std::uint32_t first = engine.state().particles.id[0];
@@ -447,7 +452,8 @@ skin = 1e-7
   EXPECT_EQ(plain.flips, 0);
   EXPECT_EQ(sorted.rebuilds, 20001);  // the first build, then every step
   double largest_tangential = 0.0;
-  for (const auto& state : plain.states) largest_tangential = std::max(largest_tangential, norm(state.tangential_force));
+  for (const auto& state : plain.states)
+    largest_tangential = std::max(largest_tangential, norm(state.tangential_force));
   EXPECT_GT(largest_tangential, 0.1) << "no tangential force to carry";
 
   // Bitwise identical contact histories and trajectories.
@@ -456,8 +462,9 @@ skin = 1e-7
     const auto &a = sorted.states[k], &b = plain.states[k];
     if (!(a.tangential_force == b.tangential_force) || a.alpha_max != b.alpha_max || a.t_star != b.t_star ||
         a.unloading != b.unloading) {
-      ADD_FAILURE() << "contact state differs first at contact step " << k + 1 << ": alpha_max " << a.alpha_max << " vs "
-                    << b.alpha_max << ", tangential x " << a.tangential_force.x << " vs " << b.tangential_force.x;
+      ADD_FAILURE() << "contact state differs first at contact step " << k + 1 << ": alpha_max " << a.alpha_max
+                    << " vs " << b.alpha_max << ", tangential x " << a.tangential_force.x << " vs "
+                    << b.tangential_force.x;
       break;
     }
   }
@@ -466,7 +473,8 @@ skin = 1e-7
     for (int id = 0; id < 2; ++id) {
       EXPECT_EQ(sorted.samples[k].position[id], plain.samples[k].position[id]) << "sample " << k << " id " << id;
       EXPECT_EQ(sorted.samples[k].velocity[id], plain.samples[k].velocity[id]) << "sample " << k << " id " << id;
-      EXPECT_EQ(sorted.samples[k].angular_velocity[id], plain.samples[k].angular_velocity[id]) << "sample " << k << " id " << id;
+      EXPECT_EQ(sorted.samples[k].angular_velocity[id], plain.samples[k].angular_velocity[id])
+          << "sample " << k << " id " << id;
     }
 
   // Control: forgetting the history once, 8 steps into the first contact, changes the end state.
@@ -511,7 +519,9 @@ TEST(NeighborList, ResortingDoesNotChangeAManyParticleRun) {
     const std::string name = overrides.empty() ? "periodic gas" : "gas between y walls";
     const Snapshot sorted = run(overrides, 1, -1), plain = run(overrides, 0, -1), wiped = run(overrides, 0, 500);
     const double resorting = largest_difference(sorted, plain), forgetting = largest_difference(wiped, plain);
-    EXPECT_LT(resorting, 1e-8) << name << ": velocities of the sorted and unsorted runs differ by up to " << resorting << " m/s";
-    EXPECT_GT(forgetting, 1e-8) << name << ": control: forgetting the contact history changed velocities by only " << forgetting;
+    EXPECT_LT(resorting, 1e-8) << name << ": velocities of the sorted and unsorted runs differ by up to " << resorting
+                               << " m/s";
+    EXPECT_GT(forgetting, 1e-8) << name << ": control: forgetting the contact history changed velocities by only "
+                                << forgetting;
   }
 }

@@ -79,7 +79,8 @@ TEST(PairDistributions, IdealGasInANarrowWalledCellGivesTheNumberDensityAtEveryD
   const double expected = (200.0 - 1.0) / (width * gap);
   EXPECT_NEAR(p.number_density, 200.0 / (width * gap), 1e-12);
   // A fraction 4/14 of the particles lie in the band: binomial s.d. of the mean over 1500 samples.
-  EXPECT_NEAR(p.test_particles_per_sample, 200.0 * 4.0 / 14.0, 4.0 * std::sqrt(200.0 * 4.0 / 14.0 * 10.0 / 14.0 / 1500.0));
+  EXPECT_NEAR(p.test_particles_per_sample, 200.0 * 4.0 / 14.0,
+              4.0 * std::sqrt(200.0 * 4.0 / 14.0 * 10.0 / 14.0 / 1500.0));
   expect_ideal(p.normal, p.normal_error, expected, "normal");
   expect_ideal(p.parallel, p.parallel_error, expected, "parallel");
   expect_ideal(p.parallel_two_sided, p.parallel_two_sided_error, expected, "two-sided");
@@ -139,9 +140,10 @@ TEST(PairDistributions, ElasticDiscGasShowsTheContactPeakAndTheBulkDensity) {
   std::size_t peak = 0;
   for (std::size_t k = 0; k < p.r.size(); ++k)
     if (p.parallel[k] > p.parallel[peak]) peak = k;
-  std::printf("  gas: n = %.5f; parallel peak %.4f at r = %.2f; normal at 6-8 R %.5f, parallel %.5f; normal at r = 2R %.5f\n",
-              n, p.parallel[peak], p.r[peak], mean_over(p.normal, 6.0, 8.0), mean_over(p.parallel, 6.0, 8.0),
-              mean_over(p.normal, 1.9, 2.1));
+  std::printf(
+      "  gas: n = %.5f; parallel peak %.4f at r = %.2f; normal at 6-8 R %.5f, parallel %.5f; normal at r = 2R %.5f\n",
+      n, p.parallel[peak], p.r[peak], mean_over(p.normal, 6.0, 8.0), mean_over(p.parallel, 6.0, 8.0),
+      mean_over(p.normal, 1.9, 2.1));
   // Far away (6R-8R, three to four diameters) the density is the bulk one: hard-disc structure at
   // nu = 0.3 has decayed to well below 1 % there, and a closed box of N discs shifts the far density
   // by O(1/N) = 1 %; statistical errors of these means are ~0.1 % (normal) and ~0.3 % (parallel),

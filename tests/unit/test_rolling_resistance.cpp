@@ -56,7 +56,7 @@ TEST(RollingTorque, EpsdSpringLoadsElasticallyThenSlidesAtTheCapAndUnloadsElasti
   RollingParams p;
   p.model = RollingModel::epsd;
   p.friction = 0.2;
-  p.damping = 0.0;  // the spring alone
+  p.damping = 0.0;                                   // the spring alone
   p.stiffness_per_radius2 = 2.25 * 1e4 * 0.2 * 0.2;  // c_k k_n mu_r^2 with k_n = 1e4 N/m
   const double kr = p.stiffness_per_radius2 * 1e-6;  // N m/rad at R* = 1 mm
   const double cap = 0.2 * 1e-3 * 2.0;               // N m at F_n = 2 N
@@ -117,8 +117,8 @@ TEST(RollingTorque, EpsdSpringTurnsWithTheContactKeepingItsSize) {
 constexpr double kG = 9.81;  // m/s^2
 constexpr double kDiameter = 0.002;
 constexpr double kDensity = 2500.0;
-constexpr double kMu = 0.5;     // sliding friction on the floor: never reached here
-constexpr double kMuR = 0.1;    // rolling friction
+constexpr double kMu = 0.5;   // sliding friction on the floor: never reached here
+constexpr double kMuR = 0.1;  // rolling friction
 
 struct Motion {
   double displacement = 0.0;      // m along x
@@ -145,15 +145,18 @@ std::vector<Motion> run_sphere(const std::string& law, const std::string& model,
       kG, theta, csv.path(), contact + "friction = 0.5\nrolling_model = \"" + model + "\"\nrolling_friction = 0.1\n");
   auto engine = test::engine_from_toml(text, testing::TempDir() + "rolling.toml", 1);
   std::vector<Motion> out;
-  std::visit([&](auto& e) {
-    EXPECT_TRUE(e.rolling_resistance);
-    const auto& p = e.state().particles;
-    const double x0 = e.unwrapped_position(0).x;
-    for (double t : at) {
-      while (e.state().time < t) e.step();
-      out.push_back({e.unwrapped_position(0).x - x0, p.velocity[0].x, p.angular_velocity[0].z, e.state().time, p.radius[0]});
-    }
-  }, engine);
+  std::visit(
+      [&](auto& e) {
+        EXPECT_TRUE(e.rolling_resistance);
+        const auto& p = e.state().particles;
+        const double x0 = e.unwrapped_position(0).x;
+        for (double t : at) {
+          while (e.state().time < t) e.step();
+          out.push_back(
+              {e.unwrapped_position(0).x - x0, p.velocity[0].x, p.angular_velocity[0].z, e.state().time, p.radius[0]});
+        }
+      },
+      engine);
   return out;
 }
 
@@ -254,34 +257,38 @@ kn = 1.0e4
 gamma_n = 500.0
 friction = 0.0
 rolling_friction = 0.3
-rolling_model = ")" + std::string(model) + R"("
+rolling_model = ")" + std::string(model) +
+                             R"("
 [run]
 duration = 1.0
 )";
     auto engine = test::engine_from_toml(text, testing::TempDir() + "couple.toml", 1);
-    std::visit([&](auto& e) {
-      const auto& p = e.state().particles;
-      double scale = 0.0;  // kg m/s, the momenta's sizes: round-off is relative to them
-      auto momentum = [&] {
-        Vec3 linear, angular;
-        scale = 0.0;
-        for (std::size_t i = 0; i < p.size(); ++i) {
-          linear += p.mass[i] * p.velocity[i];
-          angular += p.mass[i] * cross(p.position[i], p.velocity[i]) + (1.0 / p.inv_inertia[i]) * p.angular_velocity[i];
-          scale += p.mass[i] * norm(p.velocity[i]);
-        }
-        return std::pair{linear, angular};
-      };
-      const auto [linear0, angular0] = momentum();
-      const Vec3 spin0 = p.angular_velocity[0];
-      for (int k = 0; k < 4000; ++k) e.step();  // the contact lasts ~ pi sqrt(m / 2 kn) ~ 70 steps
-      EXPECT_GT(e.statistics().collisions, 0) << model;
-      EXPECT_GT(norm(p.angular_velocity[0] - spin0), 1.0) << model << ": the contact must change the spins";
-      const auto [linear1, angular1] = momentum();
-      // Velocity Verlet keeps momenta exactly for pairwise forces and couples: round-off only.
-      EXPECT_NEAR(norm(linear1 - linear0), 0.0, 1e-13 * scale) << model;
-      EXPECT_NEAR(norm(angular1 - angular0), 0.0, 1e-11 * norm(angular0)) << model;
-    }, engine);
+    std::visit(
+        [&](auto& e) {
+          const auto& p = e.state().particles;
+          double scale = 0.0;  // kg m/s, the momenta's sizes: round-off is relative to them
+          auto momentum = [&] {
+            Vec3 linear, angular;
+            scale = 0.0;
+            for (std::size_t i = 0; i < p.size(); ++i) {
+              linear += p.mass[i] * p.velocity[i];
+              angular +=
+                  p.mass[i] * cross(p.position[i], p.velocity[i]) + (1.0 / p.inv_inertia[i]) * p.angular_velocity[i];
+              scale += p.mass[i] * norm(p.velocity[i]);
+            }
+            return std::pair{linear, angular};
+          };
+          const auto [linear0, angular0] = momentum();
+          const Vec3 spin0 = p.angular_velocity[0];
+          for (int k = 0; k < 4000; ++k) e.step();  // the contact lasts ~ pi sqrt(m / 2 kn) ~ 70 steps
+          EXPECT_GT(e.statistics().collisions, 0) << model;
+          EXPECT_GT(norm(p.angular_velocity[0] - spin0), 1.0) << model << ": the contact must change the spins";
+          const auto [linear1, angular1] = momentum();
+          // Velocity Verlet keeps momenta exactly for pairwise forces and couples: round-off only.
+          EXPECT_NEAR(norm(linear1 - linear0), 0.0, 1e-13 * scale) << model;
+          EXPECT_NEAR(norm(angular1 - angular0), 0.0, 1e-11 * norm(angular0)) << model;
+        },
+        engine);
   }
 }
 

@@ -28,7 +28,8 @@ TEST(SavageJeffrey, IntegratesToOneForEveryS) {
 }
 
 TEST(SavageJeffrey, IsotropicAtZeroShear) {
-  for (double theta : {0.0, 0.3, M_PI / 2.0, 2.5}) EXPECT_DOUBLE_EQ(savage_jeffrey_angle_density(theta, 0.0), 1.0 / M_PI);
+  for (double theta : {0.0, 0.3, M_PI / 2.0, 2.5})
+    EXPECT_DOUBLE_EQ(savage_jeffrey_angle_density(theta, 0.0), 1.0 / M_PI);
 }
 
 TEST(SavageJeffrey, FavoursTheSecondQuadrantWhenTheFlowSpeedsUpWithHeight) {

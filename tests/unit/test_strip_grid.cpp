@@ -11,7 +11,9 @@ using namespace grainflow::observe;
 
 namespace {
 // Circular segment of height h (0 <= h <= 2r): r^2 acos((r - h) / r) - (r - h) sqrt(2 r h - h^2).
-double segment_area(double r, double h) { return r * r * std::acos((r - h) / r) - (r - h) * std::sqrt(2.0 * r * h - h * h); }
+double segment_area(double r, double h) {
+  return r * r * std::acos((r - h) / r) - (r - h) * std::sqrt(2.0 * r * h - h * h);
+}
 }  // namespace
 
 TEST(DiscStripArea, MatchesCircularSegments) {

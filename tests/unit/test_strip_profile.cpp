@@ -38,7 +38,9 @@ void add(ParticleStore& p, Vec3 x, double r, double m, Vec3 v, Vec3 omega = {}, 
 }
 
 // Area of the part of a disc of radius r beyond a chord at distance r - h from its centre.
-double segment_area(double r, double h) { return r * r * std::acos((r - h) / r) - (r - h) * std::sqrt(2.0 * r * h - h * h); }
+double segment_area(double r, double h) {
+  return r * r * std::acos((r - h) / r) - (r - h) * std::sqrt(2.0 * r * h - h * h);
+}
 
 }  // namespace
 
@@ -59,7 +61,8 @@ TEST(StripProfile, SquareLatticeHasItsPackingFractionInEveryStrip) {
       const auto strips = profile.averages();
       // The end strips miss the pieces beyond the lattice when the rows are not centred in them.
       for (int k = 1; k < 9; ++k)
-        EXPECT_NEAR(strips[k].value[q::solids_fraction], M_PI * r * r / (a * a), 1e-12) << "a " << a << " offset " << offset << " strip " << k;
+        EXPECT_NEAR(strips[k].value[q::solids_fraction], M_PI * r * r / (a * a), 1e-12)
+            << "a " << a << " offset " << offset << " strip " << k;
       if (a == 2.0 && offset == 0.5) {
         EXPECT_NEAR(strips[0].value[q::solids_fraction], kDiscSquarePacking, 1e-12);
       }
@@ -167,7 +170,7 @@ TEST(StripProfile, ElasticRoughDiscsShareEnergyEquallyInEveryStrip) {
 #ifdef NDEBUG
   constexpr double kDuration = 4000.0;  // ~2 collisions per disc per unit time: 0.3 s
 #else
-  constexpr double kDuration = 800.0;   // sanitizer builds run ~20 times slower
+  constexpr double kDuration = 800.0;  // sanitizer builds run ~20 times slower
 #endif
   // 100 unit discs of diameter 1 between smooth walls 20 apart: lattice spacing 2, area fraction pi/16.
   const std::string text = test::elastic_gas_case({2, 10, M_PI / 16.0, 1.0, 1.0, true, 11});

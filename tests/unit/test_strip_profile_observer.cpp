@@ -29,7 +29,7 @@ void make_couette_cell(test::ObserverFixture& f, double average_start) {
 TEST(StripProfileObserver, SavageJeffreySOfEachStripAndTheirMean) {
   test::ObserverFixture f;
   make_couette_cell(f, 0.0);
-  const double shear = 50.0;  // 1/s
+  const double shear = 50.0;                                   // 1/s
   auto delta = [](int k) { return 0.005 * (1.0 + 0.5 * k); };  // m/s
   std::uint32_t id = 0;
   double mean = 0.0;
@@ -50,7 +50,8 @@ TEST(StripProfileObserver, SavageJeffreySOfEachStripAndTheirMean) {
   const std::string text = json.str();
   const double middle = 2.0 * 0.5e-3 * shear / std::sqrt(2.0 * delta(5) * delta(5));
   ASSERT_GT(std::abs(mean / middle - 1.0), 0.1);  // the two readings are told apart
-  for (auto [key, expected] : {std::pair{"\"S_listing_strip_mean\": ", mean}, std::pair{"\"S_listing_middle_strip\": ", middle}}) {
+  for (auto [key, expected] :
+       {std::pair{"\"S_listing_strip_mean\": ", mean}, std::pair{"\"S_listing_middle_strip\": ", middle}}) {
     const auto at = text.find(key);
     ASSERT_NE(at, std::string::npos) << key << " missing in " << text;
     EXPECT_NEAR(std::stod(text.substr(at + std::string(key).size())), expected, 1e-9 * expected) << key;
@@ -112,7 +113,8 @@ TEST(StripProfileObserver, LeesEdwardsSeamStripsEqualTheInterior) {
     EXPECT_NEAR(a.value[observe::strip::temperature_lan], strips[5].averages.value[observe::strip::temperature_lan],
                 1e-9 * spread)
         << "strip " << k;
-    EXPECT_NEAR(a.value[observe::strip::solids_fraction], strips[5].averages.value[observe::strip::solids_fraction], 1e-12)
+    EXPECT_NEAR(a.value[observe::strip::solids_fraction], strips[5].averages.value[observe::strip::solids_fraction],
+                1e-12)
         << "strip " << k;
   }
 }

@@ -24,8 +24,7 @@ namespace grainflow::test {
 // case loader reads the file when it loads the case, so the object need only outlive the loading.
 class ParticleFile {
  public:
-  ParticleFile(const std::string& name, const std::string& rows,
-               const std::string& columns = "species,x,y,z,vx,vy,vz")
+  ParticleFile(const std::string& name, const std::string& rows, const std::string& columns = "species,x,y,z,vx,vy,vz")
       : dir_(std::filesystem::path(testing::TempDir()) / ("grainflow_test_" + std::to_string(::getpid()))) {
     std::filesystem::create_directories(dir_);
     path_ = (dir_ / name).string();

@@ -24,8 +24,8 @@ using Strings = std::vector<std::string>;
 bool safe(const std::string& name) {
   if (name.empty() || name == "." || name == ".." || name.size() > 200) return false;
   for (const char ch : name)
-    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_' || ch == '+' || ch == '-' || ch == '=' ||
-          ch == '~'))
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_' || ch == '+' || ch == '-' ||
+          ch == '=' || ch == '~'))
       return false;
   return true;
 }
@@ -128,9 +128,17 @@ TEST(SweepPlan, ZipNeedsEqualLengths) {
 TEST(SweepPlan, PlanErrors) {
   EXPECT_NE(input_error([] { plan_sweep({}, false, kCase); }).reason().find("nothing to vary"), std::string::npos);
   EXPECT_EQ(input_error([] { plan_sweep({{"a", {"1"}}, {"a", {"2"}}}, false, kCase); }).key(), "a");
-  EXPECT_NE(input_error([] { plan_sweep({{"a", {"1", "2", "1"}}}, false, kCase); }).reason().find("listed twice"),
+  EXPECT_NE(input_error([] {
+              plan_sweep({{"a", {"1", "2", "1"}}}, false, kCase);
+            })
+                .reason()
+                .find("listed twice"),
             std::string::npos);
-  EXPECT_NE(input_error([] { plan_sweep({{"a", {"1", "1"}}, {"b", {"2", "2"}}}, true, kCase); }).reason().find("a=1 b=2"),
+  EXPECT_NE(input_error([] {
+              plan_sweep({{"a", {"1", "1"}}, {"b", {"2", "2"}}}, true, kCase);
+            })
+                .reason()
+                .find("a=1 b=2"),
             std::string::npos);
   // 1000^2 runs is too many.
   SweepVariable big{"a", {}};
@@ -145,7 +153,8 @@ TEST(SweepPlan, NamesAreReadable) {
   EXPECT_EQ(points[0].name, "drive.amplitude.1=0.001");
   const std::vector<SweepVariable> two = {{"collision.restitution", {"0.5"}}, {"walls.ylo.restitution", {"-1e-3"}}};
   EXPECT_EQ(plan_sweep(two, false, kCase)[0].name, "collision.restitution=0.5_walls.ylo.restitution=-1e-3");
-  EXPECT_EQ(plan_sweep({{"contact.model", {"\"linear_dashpot\""}}}, false, kCase)[0].name, "contact.model=linear_dashpot");
+  EXPECT_EQ(plan_sweep({{"contact.model", {"\"linear_dashpot\""}}}, false, kCase)[0].name,
+            "contact.model=linear_dashpot");
   EXPECT_EQ(plan_sweep({{"drive.frequency", {"[0, 20.5, 0]"}}}, false, kCase)[0].name, "drive.frequency=0_20.5_0");
 }
 
@@ -178,7 +187,7 @@ TEST(SweepPlan, SafeNameAndDisplayValue) {
   EXPECT_EQ(display_value("\"rough\""), "rough");
   EXPECT_EQ(display_value("'c:\\path'"), "c:\\path");
   EXPECT_EQ(display_value("rough"), "rough");  // a bare word, as --set takes it
-  EXPECT_EQ(display_value("1e-3"), "1e-3");   // numbers as written
+  EXPECT_EQ(display_value("1e-3"), "1e-3");    // numbers as written
   EXPECT_EQ(display_value("[0, 1, 0]"), "[0, 1, 0]");
 }
 

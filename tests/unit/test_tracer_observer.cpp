@@ -36,9 +36,9 @@ struct TracerCase : test::ObserverFixture {
     c.drive.enabled = true;  // the floor's motion goes beside every row
     c.drive.face = 2;
     add(9, {0.002, 0.003, 0.004}, {1.0, 2.0, 3.0});
-    add(4, {0.005, 0.005, 0.005}, {0.0, 0.0, 0.0});  // not followed
+    add(4, {0.005, 0.005, 0.005}, {0.0, 0.0, 0.0});      // not followed
     add(7, {0.006, 0.007, 0.008}, {-1.0, 0.0, 0.5}, 1);  // an intruder
-    particles.image[0] = {2, 0, -1};  // crossed +x twice and -z once
+    particles.image[0] = {2, 0, -1};                     // crossed +x twice and -z once
     add_wall(2, 0.0005, {0.0, 0.1, 0.0});
     frame.coordination = [this] {
       std::vector<engine_api::Coordination> touch(particles.size());

@@ -95,8 +95,10 @@ StateSamples gaussian_samples(int dimension, std::size_t samples, std::size_t pa
 TEST(GeneralizedMaxwellian, IsNormalisedOnTheHalfLineWithSecondMomentKOver2a) {
   for (int k : {1, 2, 3, 6})
     for (double a : {0.3, 0.5, 1.0, 1.5, 2.7}) {
-      EXPECT_NEAR(integrate([&](double x) { return generalized_maxwellian(k, a, x); }, 12.0), 1.0, 1e-10) << k << ' ' << a;
-      EXPECT_NEAR(integrate([&](double x) { return x * x * generalized_maxwellian(k, a, x); }, 12.0), 0.5 * k / a, 1e-10);
+      EXPECT_NEAR(integrate([&](double x) { return generalized_maxwellian(k, a, x); }, 12.0), 1.0, 1e-10)
+          << k << ' ' << a;
+      EXPECT_NEAR(integrate([&](double x) { return x * x * generalized_maxwellian(k, a, x); }, 12.0), 0.5 * k / a,
+                  1e-10);
     }
   // Campbell's forms: P4 = 2 a X e^{-a X^2}, P5 = 4 sqrt(a^3 / pi) X^2 e^{-a X^2}; P1 is twice his
   // sqrt(a / pi) e^{-a X^2} (normalised on the whole line) since X = |q - <q>| folds it.

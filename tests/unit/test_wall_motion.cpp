@@ -98,7 +98,8 @@ TEST(WallMotion, DisplacementIsTheIntegralOfVelocity) {
     }
   }
   // The ramp matters: at the end of the ramp the displacement differs from the unramped one by ~A.
-  const DriveConfig unramped = drive({0.001, 0.005, 0.003}, {50.0, 12.19, 7.0}, {0.0, 2.0 * M_PI / 3.0, 4.0}, start, 0.0);
+  const DriveConfig unramped =
+      drive({0.001, 0.005, 0.003}, {50.0, 12.19, 7.0}, {0.0, 2.0 * M_PI / 3.0, 4.0}, start, 0.0);
   EXPECT_GT(std::fabs(WallMotion(constant, &unramped).displacement(0.7).y - motion.displacement(0.7).y), 1e-4);
 }
 

@@ -146,7 +146,8 @@ TEST(WaltonBraun, ReloadingClimbsK2BackToBThenContinuesOnK1) {
   const double alpha_d = 1.5 * kAlphaB;
   for (double fraction : {1.4, 1.3, 1.2}) {
     const double alpha = fraction * kAlphaB;
-    EXPECT_NEAR(normal_force(p, s, alpha), 4.0 * kK1 * (alpha - 0.75 * alpha_d), kRoundOff) << "d-unload at " << fraction;
+    EXPECT_NEAR(normal_force(p, s, alpha), 4.0 * kK1 * (alpha - 0.75 * alpha_d), kRoundOff)
+        << "d-unload at " << fraction;
   }
   EXPECT_EQ(normal_force(p, s, 1.1 * kAlphaB), 0.0);  // below the new alpha0 = 1.125 alpha_b
 }
@@ -384,7 +385,8 @@ DemEngineVariant residual_engine(const std::string& csv, const std::string& y_bo
 [domain]
 lo = [0.0, 0.0, 0.0]
 hi = [0.02, 0.02, 0.02]
-boundary = { x = "periodic", y = )" + y_boundary + R"(, z = "periodic" }
+boundary = { x = "periodic", y = )" +
+                           y_boundary + R"(, z = "periodic" }
 [gravity]
 vector = [0.0, 0.0, 0.0]
 [[species]]
@@ -411,28 +413,30 @@ TEST(WaltonBraun, EngineResetsResidualOverlapBetweenWallImpacts) {
   const double v1 = 0.5;  // m/s, first impact; the second is at 0.3 v1 < (alpha0 / alpha_max1 = 0.75) v1
   const test::ParticleFile csv("residual_wall.csv", "glass,0.01,0.0010001,0.01,0.0,-0.5,0.0\n");
   auto engine = residual_engine(csv.path(), R"(["wall", "open"])");
-  std::visit([&](auto& e) {
-    auto& p = e.state().particles;
-    const double r = p.radius[0];
-    auto bounce = [&](double speed_in) {
-      p.velocity[0] = {0.0, -speed_in, 0.0};
-      bool touched = false;
-      for (int k = 0; k < 100000; ++k) {
-        e.step();
-        const bool touching = p.position[0].y < r;
-        touched = touched || touching;
-        if (touched && !touching) break;
-      }
-      EXPECT_TRUE(touched);
-      return p.velocity[0].y / speed_in;
-    };
-    // 50 steps per eq. (2-5-4) (about 70 per wall contact): Verlet's error in e is ~(pi/70)^2/2 ~
-    // 0.1%; 1% as in the head-on test.
-    EXPECT_NEAR(bounce(v1), 0.5, 0.005);
-    // Move away a little, then come back slower. The wall's memory must have been reset.
-    for (int k = 0; k < 10; ++k) e.step();
-    EXPECT_NEAR(bounce(0.3 * v1), 0.5, 0.005) << "stale residual overlap from the first impact";
-  }, engine);
+  std::visit(
+      [&](auto& e) {
+        auto& p = e.state().particles;
+        const double r = p.radius[0];
+        auto bounce = [&](double speed_in) {
+          p.velocity[0] = {0.0, -speed_in, 0.0};
+          bool touched = false;
+          for (int k = 0; k < 100000; ++k) {
+            e.step();
+            const bool touching = p.position[0].y < r;
+            touched = touched || touching;
+            if (touched && !touching) break;
+          }
+          EXPECT_TRUE(touched);
+          return p.velocity[0].y / speed_in;
+        };
+        // 50 steps per eq. (2-5-4) (about 70 per wall contact): Verlet's error in e is ~(pi/70)^2/2 ~
+        // 0.1%; 1% as in the head-on test.
+        EXPECT_NEAR(bounce(v1), 0.5, 0.005);
+        // Move away a little, then come back slower. The wall's memory must have been reset.
+        for (int k = 0; k < 10; ++k) e.step();
+        EXPECT_NEAR(bounce(0.3 * v1), 0.5, 0.005) << "stale residual overlap from the first impact";
+      },
+      engine);
 }
 
 TEST(WaltonBraun, EngineResetsResidualOverlapBetweenPairImpacts) {
@@ -441,28 +445,30 @@ TEST(WaltonBraun, EngineResetsResidualOverlapBetweenPairImpacts) {
                                "glass,0.008,0.01,0.01,0.25,0.0,0.0\n"
                                "glass,0.0100001,0.01,0.01,-0.25,0.0,0.0\n");
   auto engine = residual_engine(csv.path(), R"("periodic")");
-  std::visit([&](auto& e) {
-    auto& p = e.state().particles;
-    auto gap = [&] { return std::fabs(p.position[1].x - p.position[0].x) - (p.radius[0] + p.radius[1]); };
-    auto collide = [&](double speed_each) {
-      // Indices may be re-sorted at a rebuild: find who is on the left.
-      const std::size_t left = p.position[0].x < p.position[1].x ? 0 : 1;
-      p.velocity[left] = {speed_each, 0.0, 0.0};
-      p.velocity[1 - left] = {-speed_each, 0.0, 0.0};
-      bool touched = false;
-      for (int k = 0; k < 100000; ++k) {
-        e.step();
-        touched = touched || gap() < 0.0;
-        if (touched && gap() > 0.0) break;
-      }
-      EXPECT_TRUE(touched);
-      return (p.velocity[1 - left].x - p.velocity[left].x) / (2.0 * speed_each);
-    };
-    const long rebuilds = e.statistics().rebuilds;
-    EXPECT_NEAR(collide(0.25), 0.5, 0.005);  // same tolerance as the wall test
-    for (int k = 0; k < 10; ++k) e.step();
-    EXPECT_NEAR(collide(0.3 * 0.25), 0.5, 0.005) << "stale residual overlap from the first impact";
-    // No neighbor-list rebuild happened, so the reset came from the touching flag itself.
-    EXPECT_EQ(e.statistics().rebuilds, rebuilds);
-  }, engine);
+  std::visit(
+      [&](auto& e) {
+        auto& p = e.state().particles;
+        auto gap = [&] { return std::fabs(p.position[1].x - p.position[0].x) - (p.radius[0] + p.radius[1]); };
+        auto collide = [&](double speed_each) {
+          // Indices may be re-sorted at a rebuild: find who is on the left.
+          const std::size_t left = p.position[0].x < p.position[1].x ? 0 : 1;
+          p.velocity[left] = {speed_each, 0.0, 0.0};
+          p.velocity[1 - left] = {-speed_each, 0.0, 0.0};
+          bool touched = false;
+          for (int k = 0; k < 100000; ++k) {
+            e.step();
+            touched = touched || gap() < 0.0;
+            if (touched && gap() > 0.0) break;
+          }
+          EXPECT_TRUE(touched);
+          return (p.velocity[1 - left].x - p.velocity[left].x) / (2.0 * speed_each);
+        };
+        const long rebuilds = e.statistics().rebuilds;
+        EXPECT_NEAR(collide(0.25), 0.5, 0.005);  // same tolerance as the wall test
+        for (int k = 0; k < 10; ++k) e.step();
+        EXPECT_NEAR(collide(0.3 * 0.25), 0.5, 0.005) << "stale residual overlap from the first impact";
+        // No neighbor-list rebuild happened, so the reset came from the touching flag itself.
+        EXPECT_EQ(e.statistics().rebuilds, rebuilds);
+      },
+      engine);
 }

@@ -155,7 +155,7 @@ TEST(ZoneProfile, MeanVelocityAndBothTemperatures) {
 TEST(ZoneProfile, SphereOnAZoneBoundaryIsSharedByVolume) {
   const double r = 0.001, rho = 1000.0, v = 0.6;
   ParticleStore p;
-  add(p, {0.005, 0.004, 0.005}, r, rho, {v, 0.0, 0.0});   // on the boundary y = 0.004
+  add(p, {0.005, 0.004, 0.005}, r, rho, {v, 0.0, 0.0});     // on the boundary y = 0.004
   add(p, {0.005, 0.0015, 0.005}, r, rho, {0.0, 0.0, 0.0});  // inside zone 0 [0, 0.004)
   ZoneProfile profile(1, 0.0, 0.008, 0.004, 0.01 * 0.01);
   profile.sample(p);
@@ -223,7 +223,7 @@ TEST(ZoneProfile, WorksAlongAnyAxis) {
 TEST(ZoneProfile, InstantaneousMeanVelocityIsPartialVolumeWeighted) {
   ParticleStore p;
   const double r = 0.001, density = 2500.0;
-  add(p, {0.005, 0.004, 0.005}, r, density, {0.0, 1.0, 0.0});         // centred on y = 0.004
+  add(p, {0.005, 0.004, 0.005}, r, density, {0.0, 1.0, 0.0});          // centred on y = 0.004
   add(p, {0.005, 0.0015, 0.005}, r, 3.0 * density, {0.0, -2.0, 0.5});  // wholly in zone 0
   ZoneProfile profile(1, 0.0, 0.012, 0.004, 0.01 * 0.01);
   const auto u = profile.instantaneous_mean_velocity(p);
@@ -259,10 +259,10 @@ TEST(ZoneProfile, InstantaneousTemperatureIsAboutEachZonesMean) {
 
 // Error bars of long-term averages by blocking: a sphere whose velocity is drawn afresh (iid) at
 // every sample has a mean whose standard error is sigma / sqrt(n). With n = 4096 samples the blocks
-// (merged in pairs whenever 512 are full) end as 256 of 16 samples; the blocking estimate then carries a relative uncertainty of about
-// 1 / sqrt(2 (blocks - 1)) at its plateau level (>= 16 blocks: <= 18%), so 30% is a 1.7-sigma
-// band on the worst level and a failing implementation (no sqrt(n), or per-block scatter
-// unscaled, off by a factor >= 2.8) cannot pass. The solids fraction is constant: error zero.
+// (merged in pairs whenever 512 are full) end as 256 of 16 samples; the blocking estimate then carries a relative
+// uncertainty of about 1 / sqrt(2 (blocks - 1)) at its plateau level (>= 16 blocks: <= 18%), so 30% is a 1.7-sigma band
+// on the worst level and a failing implementation (no sqrt(n), or per-block scatter unscaled, off by a factor >= 2.8)
+// cannot pass. The solids fraction is constant: error zero.
 TEST(ZoneProfile, BlockedErrorBarsMatchIidSamples) {
   ParticleStore p;
   add(p, {0.005, 0.002, 0.005}, 0.001, 2500.0, {});

@@ -9,10 +9,10 @@
 namespace grainflow::analysis {
 
 struct BlockLevel {
-  std::size_t block_size = 1;          // samples averaged per block, 2^level
-  std::size_t blocks = 0;              // n' at this level
-  double standard_error = 0.0;         // sqrt(c0 / (n' - 1)), c0 = (1/n') sum (x'_i - mean)^2
-  double standard_error_error = 0.0;   // standard_error / sqrt(2 (n' - 1))
+  std::size_t block_size = 1;         // samples averaged per block, 2^level
+  std::size_t blocks = 0;             // n' at this level
+  double standard_error = 0.0;        // sqrt(c0 / (n' - 1)), c0 = (1/n') sum (x'_i - mean)^2
+  double standard_error_error = 0.0;  // standard_error / sqrt(2 (n' - 1))
 };
 
 struct BlockAverage {

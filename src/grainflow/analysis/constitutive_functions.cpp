@@ -34,8 +34,8 @@ ConstitutiveValues constitutive_functions(const ConstitutiveInputs& m, double ma
 double equivalent_3d_solids_fraction(double nu) { return 4.0 / (3.0 * std::sqrt(M_PI)) * std::pow(nu, 1.5); }
 
 double elastic_gas_chi(double nu, int dimension) {
-  if (dimension == 2) return nu * (1.0 + nu * nu / 8.0) / squared(1.0 - nu) / 2.0;     // Henderson
-  return nu * (1.0 + nu + nu * nu - nu * nu * nu) / std::pow(1.0 - nu, 3) / 3.0;      // Carnahan-Starling
+  if (dimension == 2) return nu * (1.0 + nu * nu / 8.0) / squared(1.0 - nu) / 2.0;  // Henderson
+  return nu * (1.0 + nu + nu * nu - nu * nu * nu) / std::pow(1.0 - nu, 3) / 3.0;    // Carnahan-Starling
 }
 
 }  // namespace grainflow::analysis

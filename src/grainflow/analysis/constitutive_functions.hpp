@@ -17,9 +17,9 @@ namespace grainflow::analysis {
 struct ConstitutiveInputs {
   double solids_fraction = 0.0, solids_fraction_error = 0.0;
   double velocity_variance = 0.0, velocity_variance_error = 0.0;  // m^2/s^2, sum_i <u_i'^2>
-  double normal_stress = 0.0, normal_stress_error = 0.0;  // tau_N = P_yy, compressive positive (Pa; 2D N/m)
-  double shear_stress = 0.0, shear_stress_error = 0.0;    // tau_s = -P_yx: positive where it resists du/dy > 0
-  double du_dy = 0.0, du_dy_error = 0.0;                  // 1/s
+  double normal_stress = 0.0, normal_stress_error = 0.0;          // tau_N = P_yy, compressive positive (Pa; 2D N/m)
+  double shear_stress = 0.0, shear_stress_error = 0.0;            // tau_s = -P_yx: positive where it resists du/dy > 0
+  double du_dy = 0.0, du_dy_error = 0.0;                          // 1/s
 };
 
 struct ConstitutiveValues {

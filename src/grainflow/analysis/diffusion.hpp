@@ -34,9 +34,9 @@ struct VacfIntegral {
 VacfIntegral diffusion_from_vacf(std::span<const double> vacf, double sample_interval);
 
 struct MsdFit {
-  double coefficient = 0.0;  // m^2/s, slope / (2 dimensions)
-  double slope = 0.0;        // m^2/s, least-squares slope of MSD against t over the window
-  double intercept = 0.0;    // m^2, at t = 0
+  double coefficient = 0.0;                 // m^2/s, slope / (2 dimensions)
+  double slope = 0.0;                       // m^2/s, least-squares slope of MSD against t over the window
+  double intercept = 0.0;                   // m^2, at t = 0
   std::size_t first_lag = 0, last_lag = 0;  // the window, inclusive
 };
 

@@ -38,8 +38,8 @@ class RealFft {
   void release() noexcept;
 
   std::size_t n_ = 0;
-  double* real_ = nullptr;     // fftw_malloc'd, n values
-  void* complex_ = nullptr;    // fftw_complex[n/2 + 1], kept opaque so fftw3.h stays out of headers
+  double* real_ = nullptr;   // fftw_malloc'd, n values
+  void* complex_ = nullptr;  // fftw_complex[n/2 + 1], kept opaque so fftw3.h stays out of headers
   void* forward_plan_ = nullptr;
   void* inverse_plan_ = nullptr;
 };

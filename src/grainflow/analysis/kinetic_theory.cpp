@@ -99,7 +99,8 @@ struct Model {
       if (ratio >= g(kFreezingFraction)) {
         const double A = contact_value(kFreezingFraction, cv) * (kRandomClosePacking - kFreezingFraction);
         const double B = 2.0 * (1.0 + e) * A, b = kRandomClosePacking + ratio;
-        return 2.0 * ratio * kRandomClosePacking / (b + std::sqrt(b * b + 4.0 * (B - 1.0) * ratio * kRandomClosePacking));
+        return 2.0 * ratio * kRandomClosePacking /
+               (b + std::sqrt(b * b + 4.0 * (B - 1.0) * ratio * kRandomClosePacking));
       }
       hi = kFreezingFraction;
     }
@@ -108,7 +109,8 @@ struct Model {
     for (int it = 0; it < 100; ++it) {
       const double gv = g(nu);
       const double h = std::log(gv) - target;
-      if (h > 0.0) hi = nu; else lo = nu;
+      if (h > 0.0) hi = nu;
+      else lo = nu;
       double next = nu - h * gv / g_slope(nu);
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
       if (std::fabs(next - nu) <= 1e-15 * nu) return next;
@@ -127,7 +129,7 @@ struct Point {
 };
 
 struct Shot {
-  bool crashed = false;   // theta fell to zero below the top: too much heat from the floor
+  bool crashed = false;  // theta fell to zero below the top: too much heat from the floor
   double floor_flux = 0.0;
   double top_flux = 0.0;
   std::vector<Point> points;
@@ -238,9 +240,12 @@ class Integrator {
       {35.0 / 384, 0.0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84},
   };
   // 5th-order weights minus the embedded 4th-order ones.
-  static constexpr double kE[7] = {35.0 / 384 - 5179.0 / 57600,       0.0,
-                                   500.0 / 1113 - 7571.0 / 16695,     125.0 / 192 - 393.0 / 640,
-                                   -2187.0 / 6784 + 92097.0 / 339200, 11.0 / 84 - 187.0 / 2100,
+  static constexpr double kE[7] = {35.0 / 384 - 5179.0 / 57600,
+                                   0.0,
+                                   500.0 / 1113 - 7571.0 / 16695,
+                                   125.0 / 192 - 393.0 / 640,
+                                   -2187.0 / 6784 + 92097.0 / 339200,
+                                   11.0 / 84 - 187.0 / 2100,
                                    -1.0 / 40};
 
   const Model& m_;
@@ -256,7 +261,8 @@ void validate(const KineticTheoryParameters& p) {
     fail("the floor's mean-square velocity must be positive: a still floor gives the bed no energy");
   if (p.restitution == 1.0 && p.floor_restitution == 1.0)
     fail("with e = e_w = 1 nothing dissipates the energy the floor brings: there is no steady state");
-  if (!(p.top_pressure_fraction > 0.0 && p.top_pressure_fraction < 1e-3)) fail("top_pressure_fraction must lie in (0, 1e-3)");
+  if (!(p.top_pressure_fraction > 0.0 && p.top_pressure_fraction < 1e-3))
+    fail("top_pressure_fraction must lie in (0, 1e-3)");
   if (!(p.output_spacing > 0.0 && p.output_spacing <= 1.0)) fail("output_spacing must lie in (0, 1]");
 }
 
@@ -293,7 +299,8 @@ KineticTheoryProfile solve_vibrated_bed(const KineticTheoryParameters& parameter
       x_lo = x_hi;
       x_hi += widen;
       if (x_hi > x_max)
-        throw KineticTheoryError("kinetic theory: no floor temperature below 1e12 g d balances the floor's energy input");
+        throw KineticTheoryError(
+            "kinetic theory: no floor temperature below 1e12 g d balances the floor's energy input");
     } while (sign(x_hi, count) > 0);
   } else {
     do {
@@ -315,7 +322,9 @@ KineticTheoryProfile solve_vibrated_bed(const KineticTheoryParameters& parameter
   if (shot.crashed || std::fabs(shot.top_flux) > 1e-6 * flux_scale)
     throw KineticTheoryError(
         "kinetic theory: shooting on the floor temperature cannot meet the zero-flux condition at the top (heat flux "
-        "left there " + format(shot.top_flux) + " against " + format(flux_scale) + " at the floor, with theta(0) "
+        "left there " +
+        format(shot.top_flux) + " against " + format(flux_scale) +
+        " at the floor, with theta(0) "
         "resolved to round-off): the bed is too deep and dense for the temperature to be followed through it");
 
   KineticTheoryProfile out;

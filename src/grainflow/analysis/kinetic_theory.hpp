@@ -42,7 +42,7 @@ enum class ContactValueModel {
   torquato,           // Carnahan–Starling up to 0.49, then g0(0.49) (0.64-0.49)/(0.64-nu): nu < 0.64 always
 };
 
-inline constexpr double kFreezingFraction = 0.49;     // Torquato (1995): freezing point of hard spheres
+inline constexpr double kFreezingFraction = 0.49;    // Torquato (1995): freezing point of hard spheres
 inline constexpr double kRandomClosePacking = 0.64;  // Torquato (1995): random close packing
 
 double contact_value(double nu, ContactValueModel model);
@@ -72,11 +72,11 @@ FloorExchange floor_exchange(double theta, double floor_variance, double floor_r
 double floor_heat_flux(double pressure, double theta, double floor_variance, double floor_restitution);
 
 struct KineticTheoryParameters {
-  double restitution = 0.9;              // e, particle–particle, in [0, 1]
-  double floor_restitution = 0.9;        // e_w, particle–floor, in [0, 1]
-  double mass_holdup = 1.0;              // m_t = N pi d^2 / (6 A) = integral of nu dY (Lan eq. 4-1-3)
-  double floor_variance = 1.0;           // <u^2>/(g d) of the floor's velocity along gravity, > 0;
-                                         // V_b^2 for Lan's rotary drive (eq. 4-1-1), 3 V_b^2 for a vertical one
+  double restitution = 0.9;        // e, particle–particle, in [0, 1]
+  double floor_restitution = 0.9;  // e_w, particle–floor, in [0, 1]
+  double mass_holdup = 1.0;        // m_t = N pi d^2 / (6 A) = integral of nu dY (Lan eq. 4-1-3)
+  double floor_variance = 1.0;     // <u^2>/(g d) of the floor's velocity along gravity, > 0;
+                                   // V_b^2 for Lan's rotary drive (eq. 4-1-1), 3 V_b^2 for a vertical one
   ContactValueModel contact_value = ContactValueModel::torquato;
   double top_pressure_fraction = 1e-10;  // the profile ends where P = this * m_t (the mass left above is that)
   double output_spacing = 0.02;          // largest Delta Y between profile points, times max(1, theta)
@@ -100,7 +100,7 @@ struct KineticTheoryProfile {
   double floor_heat_flux = 0.0;         // Q(0), from the floor model
   double top_heat_flux = 0.0;           // Q at the last point: the shooting residual
   int shooting_iterations = 0;
-  std::vector<std::string> warnings;    // where the result is outside the theory's range
+  std::vector<std::string> warnings;  // where the result is outside the theory's range
 };
 
 // Invalid parameters: std::invalid_argument. No steady solution found: KineticTheoryError.

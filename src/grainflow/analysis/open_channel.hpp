@@ -15,9 +15,9 @@ namespace grainflow::analysis {
 
 // One strip of a measured profile, piecewise constant: bounds as heights above the bottom.
 struct ProfileStrip {
-  double lo = 0.0, hi = 0.0;    // m
+  double lo = 0.0, hi = 0.0;  // m
   double solids_fraction = 0.0;
-  double velocity = 0.0;        // m/s along the flow; NaN where the strip held no material
+  double velocity = 0.0;  // m/s along the flow; NaN where the strip held no material
 };
 
 struct ProfileParameters {

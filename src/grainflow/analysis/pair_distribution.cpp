@@ -86,9 +86,9 @@ PairDistributions pair_distributions(const StateSamples& s, const PairDistributi
       const double layer = (periodic_y ? 2.0 * d : overlap_length(xi[1] - d, xi[1] + d, lo, hi)) * tube_z(xi[2]);
       for (int k = 0; k < slices; ++k) {
         const double a = k * h, b = a + h;
-        const double across = periodic_y ? 2.0 * overlap_length(a, b, 0.0, 0.5 * s.period_y)
-                                         : overlap_length(xi[1] + a, xi[1] + b, lo, hi) +
-                                               overlap_length(xi[1] - b, xi[1] - a, lo, hi);
+        const double across =
+            periodic_y ? 2.0 * overlap_length(a, b, 0.0, 0.5 * s.period_y)
+                       : overlap_length(xi[1] + a, xi[1] + b, lo, hi) + overlap_length(xi[1] - b, xi[1] - a, lo, hi);
         normal.measure[k][t] += across * width * depth;
         parallel.measure[k][t] += overlap_length(a, b, 0.0, width) * layer;
         two_sided.measure[k][t] += 2.0 * overlap_length(a, b, 0.0, 0.5 * width) * layer;
@@ -107,7 +107,8 @@ PairDistributions pair_distributions(const StateSamples& s, const PairDistributi
       }
     }
     tests += band;
-    const double band_measure = periodic_y ? gap * width * depth : overlap_length(mid - d, mid + d, lo, hi) * width * depth;
+    const double band_measure =
+        periodic_y ? gap * width * depth : overlap_length(mid - d, mid + d, lo, hi) * width * depth;
     out.band_number_density += static_cast<double>(band) / band_measure / s.samples;
   }
   out.test_particles_per_sample = s.samples > 0 ? static_cast<double>(tests) / s.samples : 0.0;

@@ -30,17 +30,17 @@ struct PairDistributionOptions {
 };
 
 struct PairDistributions {
-  std::vector<double> r;  // m, slice centres
+  std::vector<double> r;                                     // m, slice centres
   std::vector<double> normal, parallel, parallel_two_sided;  // 1/m^2 (2D) or 1/m^3 (3D)
   // Standard errors from the scatter of the samples: each sample's count less the density times
   // its measure, block-averaged (Flyvbjerg-Petersen) over the sample sequence, so that correlated
   // successive samples and test particles sharing partners are accounted for. NaN with < 2 samples.
   std::vector<double> normal_error, parallel_error, parallel_two_sided_error;
-  double slice = 0.0;                     // m, slice width
-  double number_density = 0.0;            // the cell's: particles / (gap x width (x depth)), mean over samples
-  double band_number_density = 0.0;       // test-particle centres / the test band's measure, mean over samples
+  double slice = 0.0;                // m, slice width
+  double number_density = 0.0;       // the cell's: particles / (gap x width (x depth)), mean over samples
+  double band_number_density = 0.0;  // test-particle centres / the test band's measure, mean over samples
   double test_particles_per_sample = 0.0;
-  double diameter = 0.0;                  // m, mean
+  double diameter = 0.0;  // m, mean
 };
 
 PairDistributions pair_distributions(const StateSamples& s, const PairDistributionOptions& options);

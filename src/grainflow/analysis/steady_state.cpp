@@ -50,10 +50,11 @@ SteadyState detect_steady_state(std::span<const double> time, std::span<const do
   if (time.size() != value.size()) throw std::invalid_argument("detect_steady_state: time and value differ in length");
   SteadyState out;
   const std::size_t n = value.size();
-  const std::size_t min_rest = std::max<std::size_t>(
-      std::max<std::size_t>(options.min_samples, 4 * kMinBlocks), static_cast<std::size_t>(std::ceil(options.min_fraction * n)));
+  const std::size_t min_rest = std::max<std::size_t>(std::max<std::size_t>(options.min_samples, 4 * kMinBlocks),
+                                                     static_cast<std::size_t>(std::ceil(options.min_fraction * n)));
   if (n < min_rest) {
-    out.reason = "has only " + std::to_string(n) + " samples, too few to judge (at least " + std::to_string(min_rest) + " needed)";
+    out.reason = "has only " + std::to_string(n) + " samples, too few to judge (at least " + std::to_string(min_rest) +
+                 " needed)";
     out.too_short = true;
     return out;
   }
@@ -79,7 +80,8 @@ SteadyState detect_steady_state(std::span<const double> time, std::span<const do
     }
   }
   char text[160];
-  std::snprintf(text, sizeof text, "still drifts over the last %g %% of the series (trend %.1f, halves %.1f standard errors)",
+  std::snprintf(text, sizeof text,
+                "still drifts over the last %g %% of the series (trend %.1f, halves %.1f standard errors)",
                 100.0 * options.min_fraction, out.trend_z, out.halves_z);
   out.reason = text;
   return out;

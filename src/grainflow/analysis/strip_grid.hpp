@@ -99,10 +99,8 @@ class StripGrid {
     for (int k = first; k <= last; ++k) {
       const double part = particle_slab_measure(dimension_, radius, centre, strip_lo(k), strip_lo(k) + thickness_);
       if (!(part > 0.0)) continue;
-      if constexpr (std::is_invocable_v<Visit&, int, double, double, const Vec3&>)
-        visit(k, part, part / whole, shift);
-      else
-        visit(k, part, part / whole);
+      if constexpr (std::is_invocable_v<Visit&, int, double, double, const Vec3&>) visit(k, part, part / whole, shift);
+      else visit(k, part, part / whole);
     }
   }
 

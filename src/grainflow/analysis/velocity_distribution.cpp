@@ -72,7 +72,8 @@ double generalized_maxwellian(int k, double a, double x) {
   return 2.0 * std::pow(a, half) / std::tgamma(half) * std::pow(x, k - 1) * std::exp(-a * x * x);
 }
 
-MaxwellFit fit_generalized_maxwellian(int k, const std::vector<double>& x, double w, const std::vector<double>& density) {
+MaxwellFit fit_generalized_maxwellian(int k, const std::vector<double>& x, double w,
+                                      const std::vector<double>& density) {
   MaxwellFit fit;
   if (x.size() < 2) return fit;
   // The residual sum is smooth in log a: scan a wide bracket around the Maxwellian value k/2, then
@@ -106,8 +107,8 @@ MaxwellFit fit_generalized_maxwellian(int k, const std::vector<double>& x, doubl
   // Linearised error: dP/da = P (k / (2a) - x^2); residual variance with one fitted parameter.
   double jacobian = 0.0;
   for (double xb : x) {
-    const double derivative = bin_average(
-        [&](double t) { return generalized_maxwellian(k, fit.a, t) * (0.5 * k / fit.a - t * t); }, xb, w);
+    const double derivative =
+        bin_average([&](double t) { return generalized_maxwellian(k, fit.a, t) * (0.5 * k / fit.a - t * t); }, xb, w);
     jacobian += derivative * derivative;
   }
   const double rss = residual_sum(k, fit.a, x, w, density);
@@ -218,7 +219,8 @@ VelocityDistributions velocity_distributions(const StateSamples& s, const Veloci
     if (total == 0) continue;
     for (int b = 0; b < o.bins; ++b)
       variable.density[b] = static_cast<double>(counts[v][b]) / (static_cast<double>(total) * out.bin_width);
-    variable.fit = fit_generalized_maxwellian(static_cast<int>(variable.components.size()), out.x, out.bin_width, variable.density);
+    variable.fit = fit_generalized_maxwellian(static_cast<int>(variable.components.size()), out.x, out.bin_width,
+                                              variable.density);
   }
 
   // S (Savage and Jeffrey): the gradient over the middle half of the selected strips (the no-slip

@@ -48,11 +48,11 @@ struct SampledVariable {
 std::vector<SampledVariable> campbell_variables(int dimension);
 
 struct StripMoments {
-  long long count = 0;              // particle samples whose centre lay in the strip
-  double centre = 0.0;              // m, the strip's centre averaged over the samples
-  double mean[kComponents] = {};    // <q>
+  long long count = 0;                // particle samples whose centre lay in the strip
+  double centre = 0.0;                // m, the strip's centre averaged over the samples
+  double mean[kComponents] = {};      // <q>
   double variance[kComponents] = {};  // <(q - <q>)^2>
-  double energy[kComponents] = {};  // <weight (q - <q>)^2>: weight 1, beta for spins (m^2/s^2)
+  double energy[kComponents] = {};    // <weight (q - <q>)^2>: weight 1, beta for spins (m^2/s^2)
 };
 
 struct VelocityDistributionOptions {
@@ -67,12 +67,12 @@ struct VelocityDistributions {
   std::vector<SampledVariable> variables;
   std::vector<StripMoments> strips;
   int first_strip = 0, last_strip = 0;
-  long long counted = 0;           // particle samples in the selected strips
-  double diameter = 0.0;           // m, mean over the particles
-  double shear_rate = 0.0;         // 1/s, du/dy: least squares over the middle half of the selected strips
-  double u2 = 0.0, v2 = 0.0;       // m^2/s^2, <u'^2>, <v'^2> over the selected strips
-  double s_u = 0.0;                // 2R du/dy / sqrt(<u'^2>)
-  double s_uv = 0.0;               // 2R du/dy / sqrt(<u'^2> + <v'^2>)
+  long long counted = 0;      // particle samples in the selected strips
+  double diameter = 0.0;      // m, mean over the particles
+  double shear_rate = 0.0;    // 1/s, du/dy: least squares over the middle half of the selected strips
+  double u2 = 0.0, v2 = 0.0;  // m^2/s^2, <u'^2>, <v'^2> over the selected strips
+  double s_u = 0.0;           // 2R du/dy / sqrt(<u'^2>)
+  double s_uv = 0.0;          // 2R du/dy / sqrt(<u'^2> + <v'^2>)
 };
 
 VelocityDistributions velocity_distributions(const StateSamples& s, const VelocityDistributionOptions& options);

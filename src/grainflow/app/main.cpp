@@ -108,8 +108,9 @@ void add_analyze(CLI::App& app, Arguments& a) {
       ->check(CLI::Range(2LL, 1000000000LL));
   analyze->add_option("--groups", a.analyze.groups, "independent particle groups for the error bars (default 8)")
       ->check(CLI::Range(1, 1000000));
-  analyze->add_option("--strips", a.analyze_strips,
-                      "edmd: count only particles in strips FIRST..LAST (from the bottom wall; default all)")
+  analyze
+      ->add_option("--strips", a.analyze_strips,
+                   "edmd: count only particles in strips FIRST..LAST (from the bottom wall; default all)")
       ->expected(2)
       ->check(CLI::NonNegativeNumber);
 }
@@ -119,13 +120,16 @@ void add_sweep(CLI::App& app, Arguments& a) {
   auto* sweep = app.add_subcommand("sweep", "run a case at many values of some keys, as parallel processes");
   sweep->add_option("case", a.sweep.case_path, "case file (TOML)")->required();
   sweep->add_option("--vary", a.sweep.vary, "a key and its values: --vary collision.restitution=0.5,0.7")
-      ->type_name("KEY=V1,V2,...")->required()->allow_extra_args(false);
+      ->type_name("KEY=V1,V2,...")
+      ->required()
+      ->allow_extra_args(false);
   sweep->add_flag("--zip", a.sweep.zip, "take the --vary lists element by element, not every combination");
   sweep->add_option("-o,--output", a.sweep.output_directory, "output folder (default: runs/<case name>_sweep)");
   sweep->add_option("--jobs", a.sweep.jobs, "runs at a time (default: $GRAINFLOW_JOBS, else cores / threads)")
       ->check(CLI::Range(1, 4096));
   sweep->add_option("--set", a.sweep.overrides, "override a case key in every run")
-      ->type_name("KEY=VALUE")->allow_extra_args(false);
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
   sweep->add_option("--threads", a.sweep.threads, "OpenMP threads of each run (default 1)")->check(CLI::Range(1, 1024));
   sweep->add_flag("--quiet", a.sweep.quiet, "no progress lines");
 }
@@ -145,15 +149,15 @@ void add_calibrate(CLI::App& app, Arguments& a) {
                                                    "first trial K1 in N/m (default: Hertz-equivalent K1 / 100)");
   calibrate->add_option("--max-trials", a.calibrate.max_trials, "most trials to run (default 20)");
   calibrate->add_option("--set", a.calibrate.overrides, "override a case key in every trial")
-      ->type_name("KEY=VALUE")->allow_extra_args(false);
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
   calibrate->add_option("--threads", a.calibrate.threads, "OpenMP threads (default 1)")->check(CLI::Range(1, 1024));
   calibrate->add_flag("--quiet", a.calibrate.quiet, "no progress line during the trials");
 }
 
 // grainflow theory: steady kinetic-theory profiles of a vibrated bed (run/theory_report.hpp).
 void add_theory(CLI::App& app, Arguments& a) {
-  auto* theory =
-      app.add_subcommand("theory", "kinetic-theory profiles of a vibrated bed for a case or a run's folder");
+  auto* theory = app.add_subcommand("theory", "kinetic-theory profiles of a vibrated bed for a case or a run's folder");
   theory->add_option("input", a.theory.input, "case file (TOML), or a run's output folder")->required();
   theory->add_option(
       "-o,--output", a.theory.output,
@@ -193,8 +197,7 @@ int dispatch(const CLI::App& app, Arguments& a, const std::vector<std::string>& 
     if (*a.calibrate_start_option) a.calibrate.start_k1 = a.calibrate_start_k1;
     return run::run_calibration(a.calibrate);
   }
-  if (app.got_subcommand("check"))
-    return run::check_case(a.run_command.case_path, a.run_command.overrides, std::cout);
+  if (app.got_subcommand("check")) return run::check_case(a.run_command.case_path, a.run_command.overrides, std::cout);
   return run::run_case(a.run_command, command_line);
 }
 

@@ -129,7 +129,8 @@ void read_species(TomlReader& top, CaseConfig& c) {
       if (s.count != 1) r.fail("position", "places one particle: the species needs count = 1");
     }
     if (r.has("region_lo") != r.has("region_hi"))
-      r.fail(r.has("region_lo") ? "region_hi" : "region_lo", "a species' placement region needs both region_lo and region_hi");
+      r.fail(r.has("region_lo") ? "region_hi" : "region_lo",
+             "a species' placement region needs both region_lo and region_hi");
     if (r.has("region_lo")) {
       if (c.engine.kind != "dem") r.fail("region_lo", "a species' own placement region is a dem feature");
       if (s.position) r.fail("region_lo", "a species placed at its `position` has no region");
@@ -221,7 +222,8 @@ void read_contact(TomlReader& top, CaseConfig& c, ContactSchemas schemas) {
 // [collision] (event-driven)
 void read_collision(TomlReader& top, CaseConfig& c) {
   if (c.engine.kind == "edmd") {
-    if (top.has("contact")) top.fail("contact", "is for engine.kind = \"dem\"; the event-driven engine takes [collision]");
+    if (top.has("contact"))
+      top.fail("contact", "is for engine.kind = \"dem\"; the event-driven engine takes [collision]");
     TomlReader r = top.table("collision");
     auto& k = c.collision;
     k.restitution = r.number("restitution", k.restitution);
@@ -236,13 +238,15 @@ void read_collision(TomlReader& top, CaseConfig& c) {
     if (k.rolling_speed < 0.0) r.fail("rolling_speed", "must not be negative");
     // Under gravity a particle pressed onto a rolling one would otherwise meet it ever more gently at
     // one instant; the TC model (elastic within contact_duration) keeps them apart. 1e-4 sqrt(R/g).
-    k.contact_duration = r.number("contact_duration", g > 0.0 ? 1e-4 * std::sqrt(0.5 * c.species.front().diameter / g) : 0.0);
+    k.contact_duration =
+        r.number("contact_duration", g > 0.0 ? 1e-4 * std::sqrt(0.5 * c.species.front().diameter / g) : 0.0);
     if (k.contact_duration < 0.0) r.fail("contact_duration", "must not be negative");
     k.separation_gap = r.number("separation_gap", 0.0);
     if (!(k.separation_gap >= 0.0 && k.separation_gap < 0.01))
       r.fail("separation_gap", "must lie in [0, 0.01) (Campbell's listings: 1e-5, centres 2.00001 R apart)");
     if (k.separation_gap > 0.0 && top.has("lees_edwards"))
-      r.fail("separation_gap", "is not available with Lees-Edwards boundaries (a shifted particle may cross the sliding seam)");
+      r.fail("separation_gap",
+             "is not available with Lees-Edwards boundaries (a shifted particle may cross the sliding seam)");
     k.elastic_speed = r.number("elastic_speed", 0.0);
     if (k.elastic_speed < 0.0) r.fail("elastic_speed", "must not be negative");
     if (r.has("roughness") && r.has("tangential_restitution"))
@@ -286,7 +290,8 @@ void read_walls(TomlReader& top, CaseConfig& c, ContactSchemas schemas) {
     if (r.has("rolling_friction")) {
       if (edmd) r.fail("rolling_friction", "is for the DEM engine (contact.rolling_friction)");
       if (!(w.rolling_friction >= 0.0 && w.rolling_friction <= 1.0)) r.fail("rolling_friction", "must lie in [0, 1]");
-      if (c.contact.rolling_model == "none") r.fail("rolling_friction", "needs contact.rolling_friction > 0 (the model)");
+      if (c.contact.rolling_model == "none")
+        r.fail("rolling_friction", "needs contact.rolling_friction > 0 (the model)");
     }
     w.velocity = r.vec3("velocity", {});
     w.bump_diameter = r.number("bump_diameter", 0.0);
@@ -317,7 +322,8 @@ void read_servo(TomlReader& top, CaseConfig& c) {
     v.keep_shear_rate = r.boolean("keep_shear_rate", true);
     v.shear_rate_walls = r.string("shear_rate_walls", v.shear_rate_walls);
     if (v.shear_rate_walls != "both" && v.shear_rate_walls != "top")
-      r.fail("shear_rate_walls", "must be \"both\" (symmetric about the walls' mean velocity) or \"top\" (listing COL002)");
+      r.fail("shear_rate_walls",
+             "must be \"both\" (symmetric about the walls' mean velocity) or \"top\" (listing COL002)");
     v.scale_width = r.boolean("scale_width", true);
     v.every_collisions = r.integer("every_collisions", 0);
     if (v.every_collisions < 0) r.fail("every_collisions", "must not be negative");
@@ -329,7 +335,8 @@ void read_servo(TomlReader& top, CaseConfig& c) {
       r.fail("normal_stress", "the servo moves the walls at ylo and yhi: both must be \"wall\"");
     if (!c.domain.periodic(0)) r.fail("scale_width", "the Couette cell needs a periodic x axis (the flow direction)");
     if (c.walls[3].velocity == c.walls[2].velocity)
-      top.fail("walls.yhi.velocity", "the Couette servo needs the walls to move relative to each other (U_T sets its units)");
+      top.fail("walls.yhi.velocity",
+               "the Couette servo needs the walls to move relative to each other (U_T sets its units)");
     r.reject_unknown_keys();
   }
 }
@@ -339,7 +346,8 @@ void read_lees_edwards(TomlReader& top, CaseConfig& c) {
   if (top.has("lees_edwards")) {
     TomlReader r = top.table("lees_edwards");
     c.lees_edwards_rate = r.required_number("shear_rate");
-    if (c.lees_edwards_rate == 0.0) r.fail("shear_rate", "must not be zero (drop [lees_edwards] for a plain periodic box)");
+    if (c.lees_edwards_rate == 0.0)
+      r.fail("shear_rate", "must not be zero (drop [lees_edwards] for a plain periodic box)");
     if (!c.domain.periodic(0) || !c.domain.periodic(1))
       r.fail("shear_rate", "Lees–Edwards boundaries need periodic x (flow) and y (gradient) axes");
     r.reject_unknown_keys();
@@ -382,7 +390,8 @@ void read_drive(TomlReader& top, CaseConfig& c) {
     d.ramp = r.number("ramp", 1.0);
     if (d.ramp < 0.0) r.fail("ramp", "must not be negative");
     const FaceKind kind = c.domain.faces[d.face];
-    if (kind == FaceKind::periodic) r.fail("face", std::string("cannot drive a periodic face (") + kFaceNames[d.face] + ")");
+    if (kind == FaceKind::periodic)
+      r.fail("face", std::string("cannot drive a periodic face (") + kFaceNames[d.face] + ")");
     if (kind == FaceKind::open) r.fail("face", std::string("cannot drive an open face (") + kFaceNames[d.face] + ")");
     r.reject_unknown_keys();
   }
@@ -394,12 +403,14 @@ void read_run(TomlReader& top, CaseConfig& c) {
   auto& run = c.run;
   run.collisions = r.integer("collisions", 0);
   if (run.collisions < 0) r.fail("collisions", "must not be negative");
-  if (run.collisions > 0 && c.engine.kind != "edmd") r.fail("collisions", "only the event-driven engine counts collisions");
+  if (run.collisions > 0 && c.engine.kind != "edmd")
+    r.fail("collisions", "only the event-driven engine counts collisions");
   run.protocol = r.string("protocol", run.protocol);
   if (run.protocol != "continuous" && run.protocol != "campbell")
     r.fail("protocol", "must be \"continuous\" or \"campbell\" (segments of at most segment_collisions collisions)");
   const bool segmented = run.protocol == "campbell";
-  if (segmented && c.engine.kind != "edmd") r.fail("protocol", "Campbell's segments count collisions: an event-driven (edmd) protocol");
+  if (segmented && c.engine.kind != "edmd")
+    r.fail("protocol", "Campbell's segments count collisions: an event-driven (edmd) protocol");
   for (const char* key : {"segment_collisions", "max_segments"})
     if (r.has(key) && !segmented) r.fail(key, "only applies with protocol = \"campbell\"");
   run.segment_collisions = r.integer("segment_collisions", run.segment_collisions);
@@ -507,7 +518,8 @@ void read_initial_particles(CaseConfig& c, const std::filesystem::path& base_dir
   c.initial_particles = io::read_particle_csv(file.string());
   for (auto& species : c.species) {
     if (species.count != 0)
-      throw InputError(c.path, "species.count", "species '" + species.name + "': counts come from particles.file with init = \"file\"");
+      throw InputError(c.path, "species.count",
+                       "species '" + species.name + "': counts come from particles.file with init = \"file\"");
   }
   // Bumps of bumpy faces are rebuilt from the case; a final_state.csv that lists them may be reused.
   std::erase_if(c.initial_particles, [&](const InitialParticle& p) {
@@ -516,7 +528,8 @@ void read_initial_particles(CaseConfig& c, const std::filesystem::path& base_dir
     return false;
   });
   for (const auto& p : c.initial_particles) {
-    auto it = std::find_if(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == p.species; });
+    auto it =
+        std::find_if(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == p.species; });
     if (it == c.species.end())
       throw InputError(c.particles.file, "species", "particle of unknown species '" + p.species + "'");
     ++it->count;
@@ -532,7 +545,6 @@ toml::table parse_toml(const std::string& text, const std::string& label) {
     throw InputError(label, "", "TOML syntax error at " + where.str() + ": " + std::string(e.description()));
   }
 }
-
 
 }  // namespace
 

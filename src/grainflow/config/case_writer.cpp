@@ -49,7 +49,6 @@ std::string list(const std::vector<T>& items, Format format) {
   return out + "]";
 }
 
-
 // One `key = value` line; the value already in TOML form.
 struct Out {
   std::ostringstream text;
@@ -69,7 +68,8 @@ void write_domain(Out& o, const CaseConfig& c) {
   o.key("hi", vec(c.domain.hi));
   std::string boundary = "{ ";
   for (int axis = 0; axis < 3; ++axis)
-    boundary += std::string(axis ? ", " : "") + "xyz"[axis] + " = [" + quoted(face_kind_name(c.domain.faces[2 * axis])) + ", " +
+    boundary += std::string(axis ? ", " : "") + "xyz"[axis] + " = [" +
+                quoted(face_kind_name(c.domain.faces[2 * axis])) + ", " +
                 quoted(face_kind_name(c.domain.faces[2 * axis + 1])) + "]";
   o.key("boundary", boundary + " }");
 }
@@ -232,15 +232,19 @@ void write_observer_tables(Out& o, const ObserverTables& tables) {
   for (const auto& [table, parameters] : tables.entries()) {
     o.table(table);
     for (const auto& [key, value] : parameters.entries())
-      std::visit([&, &key = key](const auto& v) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::string>) o.text_key(key, v);
-        else o.key(key, v);
-      }, value);
+      std::visit(
+          [&, &key = key](const auto& v) {
+            if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::string>) o.text_key(key, v);
+            else o.key(key, v);
+          },
+          value);
   }
 }
 
 void write_samplers(Out& o, const CaseConfig& c) {
-  const auto id_list = [](const std::vector<std::uint32_t>& v) { return list(v, [](std::uint32_t i) { return std::to_string(i); }); };
+  const auto id_list = [](const std::vector<std::uint32_t>& v) {
+    return list(v, [](std::uint32_t i) { return std::to_string(i); });
+  };
   if (c.trajectory.enabled) {
     const auto& t = c.trajectory;
     o.table("trajectory");

@@ -14,7 +14,7 @@ namespace grainflow {
 class TomlReader;
 
 struct ContactSchema {
-  std::string_view name;                      // contact.model
+  std::string_view name;                        // contact.model
   std::span<const std::string_view> keys;       // its keys in [contact], besides model and friction
   std::span<const std::string_view> wall_keys;  // its keys in [walls.FACE], besides friction
   // Reads, checks and defaults the law's keys of [contact] / of one wall table into `out`.

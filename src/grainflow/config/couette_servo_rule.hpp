@@ -32,8 +32,8 @@ struct CouetteServoRule {
     const SpeciesConfig& first = c.species.front();
     const double radius = 0.5 * first.diameter;
     rule.speed_unit = std::max(norm(c.walls[3].velocity - c.walls[2].velocity), 1e-300);
-    rule.stress_unit = first.mass(dimension) * rule.speed_unit * rule.speed_unit /
-                       (radius * radius * (dimension == 3 ? radius : 1.0));
+    rule.stress_unit =
+        first.mass(dimension) * rule.speed_unit * rule.speed_unit / (radius * radius * (dimension == 3 ? radius : 1.0));
     long long particles = 0;
     for (const auto& species : c.species) particles += species.count;
     if (rule.config.every_collisions == 0) rule.config.every_collisions = 3 * particles;

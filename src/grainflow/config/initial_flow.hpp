@@ -20,7 +20,7 @@ class InitialFlow {
   Vec3 at(const Vec3& x) const {
     const ParticlesConfig& p = c_.particles;
     if (p.initial_profile == "campbell_chute") {
-      static constexpr double kChuteFit[8] = {0.2018029, 3.5299215, -15.2262754, 47.4364204,
+      static constexpr double kChuteFit[8] = {0.2018029,   3.5299215,  -15.2262754, 47.4364204,
                                               -88.1786499, 93.5828476, -51.8336868, 11.4877520};
       const double z = height_ > 0.0 ? std::clamp((x.y - c_.domain.lo.y) / height_, 0.0, 1.0) : 0.0;
       double f = 0.0;

@@ -25,8 +25,8 @@ struct ObserverCheckInputs {
 };
 
 struct ObserverSchema {
-  std::string_view table;   // [table]; its presence asks for the observer
-  std::string_view engine;  // the engine.kind that takes it
+  std::string_view table;           // [table]; its presence asks for the observer
+  std::string_view engine;          // the engine.kind that takes it
   std::string_view engine_refusal;  // why a case of the other engine may not have it
   // Reads, checks and defaults the table's keys into `out` (the parser then refuses any key left unread).
   void (*read)(TomlReader& table, const CaseConfig& c, ObserverParameters& out);

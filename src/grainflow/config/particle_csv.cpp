@@ -17,9 +17,11 @@ std::vector<std::string_view> split(std::string_view line) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = line.find(',', start);
-    std::string_view field = line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
+    std::string_view field =
+        line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start);
     while (!field.empty() && (field.front() == ' ' || field.front() == '\t')) field.remove_prefix(1);
-    while (!field.empty() && (field.back() == ' ' || field.back() == '\t' || field.back() == '\r')) field.remove_suffix(1);
+    while (!field.empty() && (field.back() == ' ' || field.back() == '\t' || field.back() == '\r'))
+      field.remove_suffix(1);
     fields.push_back(field);
     if (comma == std::string_view::npos) break;
     start = comma + 1;
@@ -32,7 +34,8 @@ std::vector<std::string_view> split(std::string_view line) {
 std::vector<InitialParticle> read_particle_csv(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error))  // not a device or a pipe that never ends
-    throw InputError(path, "", std::filesystem::exists(path, error) ? "is not a regular file" : "cannot open the particle file");
+    throw InputError(path, "",
+                     std::filesystem::exists(path, error) ? "is not a regular file" : "cannot open the particle file");
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "cannot open the particle file");
   return read_particle_csv(in, path);
@@ -40,7 +43,8 @@ std::vector<InitialParticle> read_particle_csv(const std::string& path) {
 
 std::vector<InitialParticle> read_particle_csv(std::istream& in, const std::string& path) {
   // `id` is accepted (and ignored) so that a run's final_state.csv can start another run.
-  static const std::array<const char*, 12> known = {"id", "species", "x", "y", "z", "vx", "vy", "vz", "wx", "wy", "wz", "diameter"};
+  static const std::array<const char*, 12> known = {"id", "species", "x",  "y",  "z",  "vx",
+                                                    "vy", "vz",      "wx", "wy", "wz", "diameter"};
   std::map<std::string, int> column;  // name -> field index
   std::vector<InitialParticle> out;
   std::string line;
@@ -66,7 +70,8 @@ std::vector<InitialParticle> read_particle_csv(std::istream& in, const std::stri
       continue;
     }
     if (fields.size() != header_fields)
-      throw InputError(path, where, "expected " + std::to_string(header_fields) + " fields, found " + std::to_string(fields.size()));
+      throw InputError(path, where,
+                       "expected " + std::to_string(header_fields) + " fields, found " + std::to_string(fields.size()));
     auto number = [&](const char* name, double fallback) {
       auto it = column.find(name);
       if (it == column.end()) return fallback;
@@ -74,7 +79,8 @@ std::vector<InitialParticle> read_particle_csv(std::istream& in, const std::stri
       double value = 0.0;
       const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
       if (result.ec != std::errc() || result.ptr != text.data() + text.size() || !std::isfinite(value))
-        throw InputError(path, where, std::string("column '") + name + "': '" + std::string(text) + "' is not a finite number");
+        throw InputError(path, where,
+                         std::string("column '") + name + "': '" + std::string(text) + "' is not a finite number");
       return value;
     };
     InitialParticle p;

@@ -30,22 +30,27 @@ void read_sampling(TomlReader& r, double& start, long long& samples, long long f
 void read_trajectory(TomlReader& top, CaseConfig& c) {
   if (top.has("trajectory")) {
     if (c.run.protocol == "campbell")
-      top.fail("trajectory", "a trajectory spans the whole run; with run.protocol = \"campbell\" each segment starts its averages afresh");
+      top.fail(
+          "trajectory",
+          "a trajectory spans the whole run; with run.protocol = \"campbell\" each segment starts its averages afresh");
     TomlReader r = top.table("trajectory");
     auto& t = c.trajectory;
     t.enabled = true;
     read_sampling(r, t.start, t.samples, 2);
     if (c.engine.kind == "dem") {  // windowed averages for correlations (Lan)
-      if (r.has("interval")) r.fail("interval", "is for event-driven runs; a DEM trajectory's samples are `window` apart");
+      if (r.has("interval"))
+        r.fail("interval", "is for event-driven runs; a DEM trajectory's samples are `window` apart");
       t.window = r.number("window", 0.0);
       if (t.window < 0.0) r.fail("window", "must not be negative (0 = half a collision time, Lan's t_s)");
       t.max_lag = r.integer("max_lag", 0);
       if (t.max_lag < 0 || t.max_lag >= t.samples) r.fail("max_lag", "must lie in [0, samples) (0 = samples / 2)");
     } else {  // instantaneous states for distributions (Campbell)
       for (const char* key : {"window", "max_lag"})
-        if (r.has(key)) r.fail(key, "is for DEM runs; an event-driven trajectory holds instantaneous states `interval` apart");
+        if (r.has(key))
+          r.fail(key, "is for DEM runs; an event-driven trajectory holds instantaneous states `interval` apart");
       t.interval = r.number("interval", 0.0);
-      if (t.interval < 0.0) r.fail("interval", "must not be negative (0 = the rest of the run spread over the samples)");
+      if (t.interval < 0.0)
+        r.fail("interval", "must not be negative (0 = the rest of the run spread over the samples)");
     }
     if (const toml::node* ids = r.raw("particles")) {
       if (const auto* word = ids->as_string()) {
@@ -79,7 +84,8 @@ void read_tracers(TomlReader& top, CaseConfig& c) {
       for (const auto& item : *list) {
         const auto name = item.value<std::string>();
         if (!name) r.fail("species", "must be an array of species names");
-        const bool known = std::any_of(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == *name; });
+        const bool known =
+            std::any_of(c.species.begin(), c.species.end(), [&](const SpeciesConfig& s) { return s.name == *name; });
         if (!known) r.fail("species", "no species is named '" + *name + "'");
         t.species.push_back(*name);
       }
@@ -99,17 +105,20 @@ void read_coarse_grain(TomlReader& top, CaseConfig& c) {
   TomlReader r = top.table("coarse_grain");
   auto& g = c.coarse_grain;
   if (c.engine.kind != "dem")
-    top.fail("coarse_grain", "coarse-grained fields are implemented for the DEM engine only (event-driven runs write "
-                             "strip profiles and stresses.csv)");
+    top.fail("coarse_grain",
+             "coarse-grained fields are implemented for the DEM engine only (event-driven runs write "
+             "strip profiles and stresses.csv)");
   g.enabled = true;
   g.kernel = r.string("kernel", g.kernel);
   if (g.kernel != "gaussian" && g.kernel != "lucy") r.fail("kernel", "must be \"gaussian\" or \"lucy\"");
   if (g.kernel == "gaussian") {
-    if (r.has("cutoff")) r.fail("cutoff", "belongs to kernel = \"lucy\"; a Gaussian's size is its standard deviation, width");
+    if (r.has("cutoff"))
+      r.fail("cutoff", "belongs to kernel = \"lucy\"; a Gaussian's size is its standard deviation, width");
     g.width = r.number("width", 0.0);
     if (g.width < 0.0) r.fail("width", "must be positive (or 0: half the reference diameter)");
   } else {
-    if (r.has("width")) r.fail("width", "belongs to kernel = \"gaussian\"; Lucy's kernel is sized by its cutoff radius");
+    if (r.has("width"))
+      r.fail("width", "belongs to kernel = \"gaussian\"; Lucy's kernel is sized by its cutoff radius");
     g.cutoff = r.number("cutoff", 0.0);
     if (g.cutoff < 0.0) r.fail("cutoff", "must be positive (or 0: sqrt(3) reference diameters)");
   }

@@ -31,8 +31,14 @@ void TomlReader::fail(const std::string& key, const std::string& reason) const {
 }
 
 static bool to_double(const toml::node& node, double& out) {
-  if (auto v = node.as_floating_point()) { out = v->get(); return true; }
-  if (auto v = node.as_integer()) { out = static_cast<double>(v->get()); return true; }
+  if (auto v = node.as_floating_point()) {
+    out = v->get();
+    return true;
+  }
+  if (auto v = node.as_integer()) {
+    out = static_cast<double>(v->get());
+    return true;
+  }
   return false;
 }
 
@@ -125,8 +131,7 @@ static bool is_index(const std::string& segment) {
 
 std::string apply_override(toml::table& root, const std::string& assignment, const std::string& file) {
   const auto equals = assignment.find('=');
-  if (equals == std::string::npos || equals == 0)
-    throw InputError(file + " (--set)", assignment, "expected KEY=VALUE");
+  if (equals == std::string::npos || equals == 0) throw InputError(file + " (--set)", assignment, "expected KEY=VALUE");
   const std::string key = assignment.substr(0, equals);
   const std::string text = assignment.substr(equals + 1);
 

@@ -17,8 +17,7 @@ namespace grainflow {
 class TomlReader {
  public:
   // `prefix` is the dotted path of this table ("" for the root); `overridden` the keys set by --set.
-  TomlReader(std::string file, const toml::table* table, std::string prefix,
-             const std::set<std::string>* overridden);
+  TomlReader(std::string file, const toml::table* table, std::string prefix, const std::set<std::string>* overridden);
 
   bool has(const std::string& key) const;
   double number(const std::string& key, double fallback);

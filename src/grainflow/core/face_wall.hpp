@@ -13,7 +13,7 @@
 namespace grainflow {
 
 struct FaceWall {
-  int face = 0;           // axis * 2 + (0 low, 1 high)
+  int face = 0;  // axis * 2 + (0 low, 1 high)
   int axis = 0;
   double inward = 1.0;    // +1 on a low face (normal +e_axis), -1 on a high face
   double position = 0.0;  // m, plane coordinate at time `since`
@@ -39,7 +39,8 @@ class FaceWalls {
   FaceWalls() = default;
   template <class Wall>
   explicit FaceWalls(const std::vector<Wall>& walls)
-      : first_(walls.empty() ? nullptr : reinterpret_cast<const unsigned char*>(static_cast<const FaceWall*>(walls.data()))),
+      : first_(walls.empty() ? nullptr
+                             : reinterpret_cast<const unsigned char*>(static_cast<const FaceWall*>(walls.data()))),
         stride_(sizeof(Wall)),
         count_(walls.size()) {}
 

@@ -31,7 +31,8 @@ struct PeriodicBox {
   static constexpr int kShiftCodes = kShiftBase * kShiftBase * kShiftBase;
   static constexpr std::uint8_t kNoShift = kMaxImage * (1 + kShiftBase + kShiftBase * kShiftBase);
   static std::uint8_t shift_code(int sx, int sy, int sz) {
-    return static_cast<std::uint8_t>((sx + kMaxImage) + kShiftBase * ((sy + kMaxImage) + kShiftBase * (sz + kMaxImage)));
+    return static_cast<std::uint8_t>((sx + kMaxImage) +
+                                     kShiftBase * ((sy + kMaxImage) + kShiftBase * (sz + kMaxImage)));
   }
   static std::array<int, 3> shift_of(std::uint8_t code) {
     return {code % kShiftBase - kMaxImage, (code / kShiftBase) % kShiftBase - kMaxImage,

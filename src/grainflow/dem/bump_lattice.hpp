@@ -8,13 +8,13 @@
 namespace grainflow::dem {
 
 struct BumpLattice {
-  int axis = 1;                  // wall normal axis
-  int axis_a = 2, axis_b = 0;    // in-plane axes: columns along a, rows along b
+  int axis = 1;                // wall normal axis
+  int axis_a = 2, axis_b = 0;  // in-plane axes: columns along a, rows along b
   int columns = 1, rows = 1;
-  double column_spacing = 0.0;   // m, along a
-  double row_spacing = 0.0;      // m, along b
-  bool triangular = false;       // odd rows shifted by half a column
-  double bump_diameter = 0.0;    // m
+  double column_spacing = 0.0;  // m, along a
+  double row_spacing = 0.0;     // m, along b
+  bool triangular = false;      // odd rows shifted by half a column
+  double bump_diameter = 0.0;   // m
   // 2D: one row of half-discs along the face's in-plane axis (the count along z is 1, on the
   // discs' plane); holes are the gaps between neighbours.
   bool planar = false;

@@ -52,13 +52,13 @@ struct ParameterProblem {
 
 template <class L>
 concept ContactLaw = requires(const typename L::Params& params, typename L::State& state, const ContactKinematics& kin,
-                              const HeadOnImpact& impact, double number, int count, TomlReader& table, ContactParameters& read_into,
-                              const ContactParameters& wall, const ContactConfig& contact,
+                              const HeadOnImpact& impact, double number, int count, TomlReader& table,
+                              ContactParameters& read_into, const ContactParameters& wall, const ContactConfig& contact,
                               const SpeciesConfig& species, const std::vector<SpeciesConfig>& species_list) {
   // Identity and case keys.
   { L::name } -> std::convertible_to<std::string_view>;
-  requires std::ranges::range<decltype(L::keys)>;       // [contact] keys besides model and friction
-  requires std::ranges::range<decltype(L::wall_keys)>;  // [walls.FACE] keys besides friction
+  requires std::ranges::range<decltype(L::keys)>;                 // [contact] keys besides model and friction
+  requires std::ranges::range<decltype(L::wall_keys)>;            // [walls.FACE] keys besides friction
   { L::stiffness_key } -> std::convertible_to<std::string_view>;  // the key of the normal stiffness
   { L::calibrated_by_stiffness } -> std::convertible_to<bool>;    // `grainflow calibrate` may vary it
   { L::read(table, read_into) } -> std::same_as<void>;
@@ -73,8 +73,8 @@ concept ContactLaw = requires(const typename L::Params& params, typename L::Stat
   { L::species_problem(species_list) } -> std::same_as<std::optional<ParameterProblem>>;
   // Closed forms of a head-on impact (for the time step: two of the lightest spheres).
   { L::binary_contact(params, impact) } -> std::same_as<BinaryContact>;
-  { L::time_step(params, impact, count) } -> std::same_as<double>;  // resolves a contact in >= count steps
-  { L::loading_stiffness(params, impact) } -> std::same_as<double>;  // N/m, giving its peak overlap v sqrt(m / k)
+  { L::time_step(params, impact, count) } -> std::same_as<double>;      // resolves a contact in >= count steps
+  { L::loading_stiffness(params, impact) } -> std::same_as<double>;     // N/m, giving its peak overlap v sqrt(m / k)
   { L::tangential_stiffness(params, impact) } -> std::same_as<double>;  // N/m, at that overlap
   { L::describe(params, impact) } -> std::same_as<std::vector<CheckLine>>;
   // The force on i (normal magnitude, tangential vector), advancing the pair's memory by dt.
@@ -90,7 +90,7 @@ concept ContactLaw = requires(const typename L::Params& params, typename L::Stat
 // far enough apart for them; a law without adhesion has neither.
 template <class L>
 concept CohesiveContactLaw = ContactLaw<L> && requires(const typename L::Params& params, double number) {
-  { L::detach_overlap(params, number) } -> std::same_as<double>;    // m, for effective radius `number`
+  { L::detach_overlap(params, number) } -> std::same_as<double>;        // m, for effective radius `number`
   { L::sliding_load(params, number, number) } -> std::same_as<double>;  // N, for normal force, R*
 };
 

@@ -37,7 +37,8 @@ decltype(auto) visit_one(std::string_view name, F&& f) {
   if constexpr (sizeof...(Rest) > 0) {
     return visit_one<F, Rest...>(name, std::forward<F>(f));
   } else {
-    throw std::invalid_argument("unknown contact law '" + std::string(name) + "' (registered: " + contact_law_names() + ")");
+    throw std::invalid_argument("unknown contact law '" + std::string(name) + "' (registered: " + contact_law_names() +
+                                ")");
   }
 }
 template <class F, ContactLaw... Laws>
@@ -56,7 +57,8 @@ decltype(auto) visit_contact_law(std::string_view name, F&& f) {
 // Calls f.template operator()<Law>() for every registered law, in order.
 template <class F>
 void for_each_contact_law(F&& f) {
-  [&]<ContactLaw... Laws>(ContactLawList<Laws...>) { (f.template operator()<Laws>(), ...); }(RegisteredContactLaws{});
+  [&]<ContactLaw... Laws>(ContactLawList<Laws...>) { (f.template operator()<Laws>(), ...); }
+  (RegisteredContactLaws{});
 }
 
 }  // namespace grainflow::dem

@@ -13,8 +13,8 @@ namespace grainflow::dem {
 
 template <class State>
 struct ContactStore {
-  std::vector<State> pair_state;           // aligned with NeighborPairs::partner
-  std::vector<std::uint8_t> pair_touching; // 1 while the pair overlaps
+  std::vector<State> pair_state;                         // aligned with NeighborPairs::partner
+  std::vector<std::uint8_t> pair_touching;               // 1 while the pair overlaps
   std::vector<std::vector<State>> wall_state;            // [wall][particle]
   std::vector<std::vector<std::uint8_t>> wall_touching;  // [wall][particle]
 
@@ -56,7 +56,8 @@ struct ContactStore {
   };
   using Images = std::vector<std::array<std::int32_t, 3>>;
   static std::array<std::int32_t, 3> image_key(std::uint8_t code, const std::array<std::int32_t, 3>& image_a,
-                                               const std::array<std::int32_t, 3>& image_b, std::int32_t shear_turns = 0) {
+                                               const std::array<std::int32_t, 3>& image_b,
+                                               std::int32_t shear_turns = 0) {
     const auto s = PeriodicBox::shift_of(code);
     return {s[0] - s[1] * shear_turns + image_a[0] - image_b[0], s[1] + image_a[1] - image_b[1],
             s[2] + image_a[2] - image_b[2]};
@@ -73,7 +74,8 @@ struct ContactStore {
       for (std::uint32_t k = old_list.offsets[i]; k < old_list.offsets[i + 1]; ++k)
         if (pair_touching[k]) {
           const std::uint32_t j = old_list.partner[k];
-          kept.push_back({ids[i], ids[j], image_key(old_list.shift[k], images[i], images[j], shear_turns), pair_state[k]});
+          kept.push_back(
+              {ids[i], ids[j], image_key(old_list.shift[k], images[i], images[j], shear_turns), pair_state[k]});
         }
     std::vector<State>().swap(pair_state);
     std::vector<std::uint8_t>().swap(pair_touching);

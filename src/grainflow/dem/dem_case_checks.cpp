@@ -40,7 +40,8 @@ void validate_planar(const CaseConfig& c) {
     fail(c, "particles.initial_velocity", "in 2D (discs in the x-y plane) the z component must be 0");
   for (int f = 0; f < 4; ++f) {
     const std::string wall = std::string("walls.") + kFaceNames[f];
-    if (c.walls[f].velocity.z != 0.0) fail(c, wall + ".velocity", "in 2D (discs in the x-y plane) the z component must be 0");
+    if (c.walls[f].velocity.z != 0.0)
+      fail(c, wall + ".velocity", "in 2D (discs in the x-y plane) the z component must be 0");
     if (c.domain.faces[f] == FaceKind::bumpy && c.walls[f].lattice == "triangular")
       fail(c, wall + ".lattice", "in 2D a bumpy wall is one row of half-discs: \"triangular\" has no meaning");
   }
@@ -50,16 +51,20 @@ void validate_planar(const CaseConfig& c) {
 // cutoff along x and three along y, and a potential along the sheared axes would have no bound.
 void validate_lees_edwards(const CaseConfig& c, const dem::DerivedQuantities& d) {
   if (c.gravity.x != 0.0 || c.gravity.y != 0.0)
-    fail(c, "gravity.vector", "with Lees-Edwards boundaries gravity may only act along z (x and y are sheared and periodic)");
+    fail(c, "gravity.vector",
+         "with Lees-Edwards boundaries gravity may only act along z (x and y are sheared and periodic)");
   if (c.coarse_grain.enabled)
-    fail(c, "coarse_grain", "is not yet available with Lees-Edwards boundaries (stresses.csv gives the strips' stresses)");
+    fail(c, "coarse_grain",
+         "is not yet available with Lees-Edwards boundaries (stresses.csv gives the strips' stresses)");
   const double cutoff = d.max_diameter + d.skin + d.cohesion_reach;
   if (c.domain.length(0) < 4.0 * cutoff)
-    fail(c, "domain.hi", "with Lees-Edwards boundaries the box must be at least 4 list cutoffs (" + fmt_number(4.0 * cutoff) +
-                             " m: diameter + skin) long along x");
+    fail(c, "domain.hi",
+         "with Lees-Edwards boundaries the box must be at least 4 list cutoffs (" + fmt_number(4.0 * cutoff) +
+             " m: diameter + skin) long along x");
   if (c.domain.length(1) < 3.0 * cutoff)
-    fail(c, "domain.hi", "with Lees-Edwards boundaries the box must be at least 3 list cutoffs (" + fmt_number(3.0 * cutoff) +
-                             " m: diameter + skin) high along y");
+    fail(c, "domain.hi",
+         "with Lees-Edwards boundaries the box must be at least 3 list cutoffs (" + fmt_number(3.0 * cutoff) +
+             " m: diameter + skin) high along y");
 }
 
 // The Couette servo with soft particles: the flat walls at ylo and yhi are steered along y; the
@@ -83,9 +88,10 @@ void validate_periodic_lengths(const CaseConfig& c, const dem::DerivedQuantities
     if (!c.domain.periodic(axis)) continue;
     const double needed = (d.max_diameter + d.skin) / PeriodicBox::kMaxImage;
     if (c.domain.length(axis) < needed)
-      fail(c, "domain.hi", std::string("periodic axis ") + "xyz"[axis] + " is " + std::to_string(c.domain.length(axis)) +
-                               " m long; it must be at least (largest diameter + skin) / 2 = " + std::to_string(needed) +
-                               " m (images are searched up to two box lengths away)");
+      fail(c, "domain.hi",
+           std::string("periodic axis ") + "xyz"[axis] + " is " + std::to_string(c.domain.length(axis)) +
+               " m long; it must be at least (largest diameter + skin) / 2 = " + std::to_string(needed) +
+               " m (images are searched up to two box lengths away)");
   }
 }
 
@@ -96,17 +102,19 @@ void validate_bumpy_walls(const CaseConfig& c) {
     const dem::BumpLattice lattice = dem::bump_lattice(c, f);
     const std::string key = std::string("walls.") + kFaceNames[f] + ".spacing";
     if (lattice.closest_bumps() < lattice.bump_diameter * (1.0 - 1e-9))
-      fail(c, key, "bumps would overlap: the lattice (stretched to tile the face: " + std::to_string(lattice.columns) +
-                       " x " + std::to_string(lattice.rows) + ") puts bump centres " +
-                       std::to_string(lattice.closest_bumps()) + " m apart, less than bump_diameter");
+      fail(c, key,
+           "bumps would overlap: the lattice (stretched to tile the face: " + std::to_string(lattice.columns) + " x " +
+               std::to_string(lattice.rows) + ") puts bump centres " + std::to_string(lattice.closest_bumps()) +
+               " m apart, less than bump_diameter");
     double smallest = 0.0;
     for (const auto& s : c.species)
       if (!s.frozen && (smallest == 0.0 || s.diameter < smallest)) smallest = s.diameter;
     if (lattice.largest_passing_diameter() >= smallest)
-      fail(c, key, "the " + std::string(lattice.triangular ? "triangular" : "square") + " lattice (" +
-                       std::to_string(lattice.columns) + " x " + std::to_string(lattice.rows) + " bumps) lets spheres up to " +
-                       std::to_string(lattice.largest_passing_diameter()) + " m through; the smallest species is " +
-                       std::to_string(smallest) + " m (reduce spacing or enlarge bump_diameter)");
+      fail(c, key,
+           "the " + std::string(lattice.triangular ? "triangular" : "square") + " lattice (" +
+               std::to_string(lattice.columns) + " x " + std::to_string(lattice.rows) + " bumps) lets spheres up to " +
+               std::to_string(lattice.largest_passing_diameter()) + " m through; the smallest species is " +
+               std::to_string(smallest) + " m (reduce spacing or enlarge bump_diameter)");
   }
 }
 
@@ -126,23 +134,27 @@ void validate_placement(const CaseConfig& c, const dem::DerivedQuantities& d) {
           fail(c, key_lo, "the placement region must lie inside the domain");
         // Along a periodic axis centres go anywhere (no face to keep clear of).
         if (!c.domain.periodic(axis) && !(hi[axis] - lo[axis] > placed_diameter))
-          fail(c, key_hi, "the placement region must be wider than the largest diameter placed at random on every bounded axis");
+          fail(c, key_hi,
+               "the placement region must be wider than the largest diameter placed at random on every bounded axis");
         if (!(hi[axis] > lo[axis])) fail(c, key_hi, "the placement region must have a positive extent");
       }
       double volume = 1.0;  // an area in 2D
       for (int axis = 0; axis < dim; ++axis) volume *= hi[axis] - lo[axis];
       if (c.particles.init == "random" && solids / volume > kMaxRandomSolidsFraction)
-        fail(c, "species.count", "the particles fill " + std::to_string(solids / volume) + " of " + what + "; random placement needs at most " +
-                                     std::to_string(kMaxRandomSolidsFraction) + " (enlarge the domain or region)");
+        fail(c, "species.count",
+             "the particles fill " + std::to_string(solids / volume) + " of " + what +
+                 "; random placement needs at most " + std::to_string(kMaxRandomSolidsFraction) +
+                 " (enlarge the domain or region)");
     };
     double placed_diameter = 0.0, solids = 0.0;
     for (const auto& species : c.species) {
       if (species.region_lo) {
         if (c.particles.init != "random")
-          fail(c, "species.region_lo", "species '" + species.name + "': a species' own region is for init = \"random\"");
+          fail(c, "species.region_lo",
+               "species '" + species.name + "': a species' own region is for init = \"random\"");
         check_region(*species.region_lo, *species.region_hi, species.diameter,
-                     species.count * ball_measure(dim, 0.5 * species.diameter), "species.region_lo", "species.region_hi",
-                     "species '" + species.name + "''s placement region");
+                     species.count * ball_measure(dim, 0.5 * species.diameter), "species.region_lo",
+                     "species.region_hi", "species '" + species.name + "''s placement region");
         continue;
       }
       if (!species.position && species.count > 0) placed_diameter = std::max(placed_diameter, species.diameter);
@@ -156,8 +168,9 @@ void validate_placement(const CaseConfig& c, const dem::DerivedQuantities& d) {
       long total = 0;
       for (const auto& s : c.species) total += s.count;
       if (static_cast<double>(total) > sites)
-        fail(c, "species.count", std::to_string(total) + " particles do not fit on the " + fmt_number(sites) +
-                                     " lattice sites of the placement region");
+        fail(c, "species.count",
+             std::to_string(total) + " particles do not fit on the " + fmt_number(sites) +
+                 " lattice sites of the placement region");
     }
   } else {
     for (std::size_t i = 0; i < c.initial_particles.size(); ++i) {
@@ -179,7 +192,8 @@ void validate_fixed_positions(const CaseConfig& c) {
   for (const auto& s : c.species)
     if (s.position) {
       if (c.particles.init != "random")
-        fail(c, "species.position", "species '" + s.name + "': a fixed start position needs particles.init = \"random\"");
+        fail(c, "species.position",
+             "species '" + s.name + "': a fixed start position needs particles.init = \"random\"");
       for (int axis = 0; axis < dim; ++axis)
         if ((*s.position)[axis] < c.domain.lo[axis] || (*s.position)[axis] > c.domain.hi[axis])
           fail(c, "species.position", "species '" + s.name + "' starts outside the domain on axis " + "xyz"[axis]);
@@ -192,9 +206,11 @@ void validate_tracers(const CaseConfig& c, const dem::DerivedQuantities& d) {
   const long total = d.moving_particles + d.frozen_particles;
   for (auto id : c.tracers.particles)
     if (id >= static_cast<std::uint64_t>(total))
-      fail(c, "tracers.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
-                                       std::to_string(total - 1) + ")");
-  if (c.tracers.interval > 0.0 && c.tracers.interval < d.time_step) fail(c, "tracers.interval", "is shorter than one time step");
+      fail(c, "tracers.particles",
+           "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " + std::to_string(total - 1) +
+               ")");
+  if (c.tracers.interval > 0.0 && c.tracers.interval < d.time_step)
+    fail(c, "tracers.interval", "is shorter than one time step");
 }
 
 // [coarse_grain]: a grid the kernel resolves and memory holds.
@@ -213,7 +229,8 @@ void validate_coarse_grain(const CaseConfig& c, const dem::DerivedQuantities& d)
     const double h = length[a] / cells[a];
     // A kernel narrower than the cells puts each point into the one cell it lies in: binning, not
     // coarse graining.
-    const bool averaged = cells[a] == 1 && (c.domain.periodic(a) || (dim == 2 && a == 2));  // a profile across that axis
+    const bool averaged =
+        cells[a] == 1 && (c.domain.periodic(a) || (dim == 2 && a == 2));  // a profile across that axis
     if (h > 2.0 * spread && !averaged)
       fail(c, "coarse_grain.cells",
            std::string("cells ") + fmt_number(h) + " m wide along " + static_cast<char>('x' + a) +
@@ -223,8 +240,8 @@ void validate_coarse_grain(const CaseConfig& c, const dem::DerivedQuantities& d)
   }
   const double bytes = count * kCoarseGrainBytesPerCell;
   if (bytes > 4e9)
-    fail(c, "coarse_grain.cells", "the grid of " + fmt_number(count) + " cells would take " + fmt_number(bytes / 1e9) +
-                                      " GB; use fewer cells");
+    fail(c, "coarse_grain.cells",
+         "the grid of " + fmt_number(count) + " cells would take " + fmt_number(bytes / 1e9) + " GB; use fewer cells");
   if (g.interval > 0.0 && g.interval < d.time_step) fail(c, "coarse_grain.interval", "is shorter than one time step");
 }
 
@@ -236,13 +253,15 @@ void validate_trajectory(const CaseConfig& c, const dem::DerivedQuantities& d) {
   const long total = d.moving_particles + d.frozen_particles;
   for (auto id : t.particles)
     if (id >= static_cast<std::uint64_t>(total))
-      fail(c, "trajectory.particles", "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " +
-                                          std::to_string(total - 1) + ")");
+      fail(c, "trajectory.particles",
+           "there is no particle with id " + std::to_string(id) + " (ids run from 0 to " + std::to_string(total - 1) +
+               ")");
   const double followed = t.particles.empty() ? static_cast<double>(d.moving_particles) : t.particles.size();
   const double bytes = 48.0 * followed * static_cast<double>(t.samples);  // velocity + position, 6 doubles
   if (bytes > 64e9)
-    fail(c, "trajectory.samples", "trajectory.h5 would hold " + std::to_string(bytes / 1e9) +
-                                      " GB; follow fewer particles or take fewer samples");
+    fail(c, "trajectory.samples",
+         "trajectory.h5 would hold " + std::to_string(bytes / 1e9) +
+             " GB; follow fewer particles or take fewer samples");
 }
 
 }  // namespace
@@ -264,8 +283,8 @@ DerivedQuantities validate_dem_case(const CaseConfig& c) {
   if (d.steps_per_contact < kMinStepsPerContact) {
     const double suggested = d.contact_duration / kMinStepsPerContact;
     fail(c, d.time_step_from_case ? "run.time_step" : "run.collision_steps",
-         "time step " + std::to_string(d.time_step) + " s resolves a contact of " +
-             std::to_string(d.contact_duration) + " s in only " + std::to_string(d.steps_per_contact) +
+         "time step " + std::to_string(d.time_step) + " s resolves a contact of " + std::to_string(d.contact_duration) +
+             " s in only " + std::to_string(d.steps_per_contact) +
              " steps; use a time step <= " + std::to_string(suggested) + " s (at least 5 steps per contact)");
   }
   validate_periodic_lengths(c, d);

@@ -4,8 +4,8 @@
 // `every_collisions` contacts begun between particles or once the gap has changed by `gap_change`,
 // the walls' normal impulse since the last update (the contact forces integrated over the steps by
 // the trapezoidal rule) giving the measured stress; and, if `interval` is set, once that long has
-// passed (a packing at rest begins few contacts and its gap may not move). The walls are steered (WallMotion::steer) from
-// the update on, so their positions stay continuous. The periodic width stays the box's.
+// passed (a packing at rest begins few contacts and its gap may not move). The walls are steered (WallMotion::steer)
+// from the update on, so their positions stay continuous. The periodic width stays the box's.
 #pragma once
 
 #include <cmath>
@@ -92,10 +92,10 @@ class DemCouetteServo {
     wall.move_to(t);
   }
 
-  int bottom_ = -1, top_ = -1;  // wall indices
-  double shear_rate_ = 0.0;     // 1/s, U_T / H at the start
-  double impulse_ = 0.0;        // N s, into both walls since the last update
-  double last_load_ = 0.0;      // N, both walls' load at the last step
+  int bottom_ = -1, top_ = -1;      // wall indices
+  double shear_rate_ = 0.0;         // 1/s, U_T / H at the start
+  double impulse_ = 0.0;            // N s, into both walls since the last update
+  double last_load_ = 0.0;          // N, both walls' load at the last step
   double since_ = 0.0, gap_ = 0.0;  // the last update's time and gap
   long long collisions_ = 0;        // contacts begun between particles at the last update
   long long updates_ = 0;

@@ -48,8 +48,8 @@ struct EnergyTally {
   // velocity jump (part of contact_work), and the kinetic energy a particle gains crossing the seam
   double seam_contact_work = 0.0, seam_crossing_work = 0.0;
   double contact_power = 0.0, wall_power = 0.0, growth_power = 0.0, seam_power = 0.0;  // W
-  double start_energy = 0.0;            // J, kinetic + rotational + bounded potential + elastic at the start
-  double start_elastic = 0.0;           // J, the springs' part of it
+  double start_energy = 0.0;              // J, kinetic + rotational + bounded potential + elastic at the start
+  double start_elastic = 0.0;             // J, the springs' part of it
   double start_periodic_potential = 0.0;  // J
 };
 
@@ -167,7 +167,8 @@ class DemEngine {
         const ContactKinematics c = pair_kinematics(i, j, d, r, s_.box.image_velocity(pairs_.shift[k]));
         const int bump_face = std::max(p.wall[i], p.wall[j]);
         State memory = contacts_.pair_state[k];
-        const ContactForce f = Law::force(bump_face < 0 ? pair_params_ : bump_params_[bump_face], law_state(memory), c, 0.0);
+        const ContactForce f =
+            Law::force(bump_face < 0 ? pair_params_ : bump_params_[bump_face], law_state(memory), c, 0.0);
         const Vec3 force = f.normal * c.normal + f.tangential;  // on i
         if (bump_face < 0) {
           visit(static_cast<std::uint32_t>(i), -1, xj, force);
@@ -197,7 +198,9 @@ class DemEngine {
   }
 
   // Positions with periodic crossings undone, for diffusion and outputs.
-  Vec3 unwrapped_position(std::size_t i) const { return s_.box.unwrapped(s_.particles.position[i], s_.particles.image[i]); }
+  Vec3 unwrapped_position(std::size_t i) const {
+    return s_.box.unwrapped(s_.particles.position[i], s_.particles.image[i]);
+  }
 
  private:
   // Whether a pair of radii ri, rj at squared distance r2 is in contact: overlapping, or (an adhesive
@@ -208,7 +211,8 @@ class DemEngine {
     if constexpr (cohesive) {
       if (touching) {
         const int bump_face = std::max(p.wall[i], p.wall[j]);
-        const double reach = sum - Law::detach_overlap(bump_face < 0 ? pair_params_ : bump_params_[bump_face], ri * rj / sum);
+        const double reach =
+            sum - Law::detach_overlap(bump_face < 0 ? pair_params_ : bump_params_[bump_face], ri * rj / sum);
         return r2 < reach * reach;
       }
     }
@@ -247,7 +251,8 @@ class DemEngine {
     k.normal_force = normal_force;
     if (r.model == RollingModel::epsd && r.damping > 0.0) {
       double inverse = RollingResistance::inverse_rolling_inertia(p.inv_mass[i], p.inv_inertia[i], p.radius[i]);
-      if (j != kWall) inverse += RollingResistance::inverse_rolling_inertia(p.inv_mass[j], p.inv_inertia[j], p.radius[j]);
+      if (j != kWall)
+        inverse += RollingResistance::inverse_rolling_inertia(p.inv_mass[j], p.inv_inertia[j], p.radius[j]);
       k.rolling_inertia = inverse > 0.0 ? 1.0 / inverse : 0.0;
     }
     return k;
@@ -258,7 +263,8 @@ class DemEngine {
   // Without Sliding the image moves with its particle and `image_velocity` is not read: adding a
   // zero vector is three additions the compiler may not drop (-0 + 0 is +0).
   template <bool Sliding = true>
-  ContactKinematics pair_kinematics(std::size_t i, std::size_t j, const Vec3& d, double r, const Vec3& image_velocity) const {
+  ContactKinematics pair_kinematics(std::size_t i, std::size_t j, const Vec3& d, double r,
+                                    const Vec3& image_velocity) const {
     const ParticleStore& p = s_.particles;
     const double ri = p.radius[i], rj = p.radius[j];
     ContactKinematics c;
@@ -349,20 +355,20 @@ class DemEngine {
   NeighborPairs pairs_;
   ContactStore<State> contacts_;
   std::vector<Vec3> position_at_build_;
-  double offset_at_build_ = 0.0;  // m, the Lees–Edwards offset the list was built at
+  double offset_at_build_ = 0.0;                                 // m, the Lees–Edwards offset the list was built at
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;  // per thread: shares for others' particles (kept zero)
   struct alignas(64) TouchedList {  // a cache line each: every push_back stores the vector's end
     std::vector<std::uint32_t> list;
   };
   std::vector<TouchedList> thread_touched_;  // per thread: where those shares are
-  std::vector<Vec3> wall_force_;        // N, each flat wall's force on the particles at the last evaluation
+  std::vector<Vec3> wall_force_;             // N, each flat wall's force on the particles at the last evaluation
   DemCouetteServo servo_;
-  std::array<int, 6> bump_wall_{};      // wall carrying each face's bumps, -1 when they stand still
-  std::array<int, 6> bump_owner_{};     // the bumpy wall of each face, -1 where there is none
-  std::array<Params, 6> bump_params_{};  // contact parameters of each face's bumps
-  bool has_bumps_ = false;               // any wall bumps among the particles (from the whole initial state)
-  RollingSetup rolling_;                         // Rolling only
-  std::array<RollingParams, 6> bump_rolling_{};  // Rolling only: each face's bumps'
+  std::array<int, 6> bump_wall_{};                 // wall carrying each face's bumps, -1 when they stand still
+  std::array<int, 6> bump_owner_{};                // the bumpy wall of each face, -1 where there is none
+  std::array<Params, 6> bump_params_{};            // contact parameters of each face's bumps
+  bool has_bumps_ = false;                         // any wall bumps among the particles (from the whole initial state)
+  RollingSetup rolling_;                           // Rolling only
+  std::array<RollingParams, 6> bump_rolling_{};    // Rolling only: each face's bumps'
   std::unique_ptr<DomainExchange<State>> domain_;  // MPI ranks > 1 only
   ContactStatistics stats_;
   EnergyTally energy_;

@@ -21,7 +21,7 @@ struct ForceLoopSums {
   double max_ratio = 0.0;       // the largest overlap over the smaller diameter
   double boundary_power = 0.0;  // W: on a moving wall, or on free partners by wall bumps
   double growth_power = 0.0, seam_power = 0.0;
-  Vec3 force{};                 // N: on the particles (a wall's load)
+  Vec3 force{};  // N: on the particles (a wall's load)
   long contacts = 0, begun = 0;
   ForceLoopSums& operator+=(const ForceLoopSums& o) {
     max_ratio = std::max(max_ratio, o.max_ratio);
@@ -36,10 +36,14 @@ struct ForceLoopSums {
 };
 
 template <class Law, bool Rolling>
-DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vector<Params> wall_params, int threads, int sort_every,
-          const EngineDomain* domain, RollingSetup rolling)
-    : s_(std::move(state)), pair_params_(pair_params), wall_params_(std::move(wall_params)),
-      threads_(std::max(1, threads)), sort_every_(sort_every), rolling_(std::move(rolling)) {
+DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vector<Params> wall_params, int threads,
+                                   int sort_every, const EngineDomain* domain, RollingSetup rolling)
+    : s_(std::move(state)),
+      pair_params_(pair_params),
+      wall_params_(std::move(wall_params)),
+      threads_(std::max(1, threads)),
+      sort_every_(sort_every),
+      rolling_(std::move(rolling)) {
   if constexpr (Rolling) {
     if (rolling_.walls.size() != s_.walls.size()) throw std::invalid_argument("DemEngine: one RollingParams per wall");
     bump_rolling_.fill(rolling_.pair);
@@ -120,7 +124,8 @@ void DemEngine<Law, Rolling>::step() {
   grow_radii();
   if (domain_) domain_->refresh(p);  // ghosts take their owners' new positions and velocities
   if (domain_ ? domain_->any(needs_rebuild()) : needs_rebuild()) rebuild(false);
-  const double contact_before = energy_.contact_power, wall_before = energy_.wall_power, seam_before = energy_.seam_power;
+  const double contact_before = energy_.contact_power, wall_before = energy_.wall_power,
+               seam_before = energy_.seam_power;
   compute_forces(dt);
   energy_.contact_power = half_kick<true>();
   energy_.contact_work += 0.5 * dt * (contact_before + energy_.contact_power);
@@ -216,7 +221,8 @@ double DemEngine<Law, Rolling>::contact_power() const {
   const ParticleStore& p = s_.particles;
   double power = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.counted(i)) power += contact_power_of(p.force[i], p.torque[i], p.mass[i], s_.gravity, p.velocity[i], p.angular_velocity[i]);
+    if (p.counted(i))
+      power += contact_power_of(p.force[i], p.torque[i], p.mass[i], s_.gravity, p.velocity[i], p.angular_velocity[i]);
   return power;
 }
 
@@ -230,11 +236,12 @@ double DemEngine<Law, Rolling>::elastic_energy() const {
     for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k) {
       if (!contacts_.pair_touching[k]) continue;
       const std::uint32_t j = pairs_.partner[k];
-      const double overlap = p.radius[i] + p.radius[j] - norm(p.position[i] - (p.position[j] + shifts[pairs_.shift[k]]));
+      const double overlap =
+          p.radius[i] + p.radius[j] - norm(p.position[i] - (p.position[j] + shifts[pairs_.shift[k]]));
       const int bump_face = std::max(p.wall[i], p.wall[j]);
       const double effective_radius = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
-      e += Law::elastic_energy(bump_face < 0 ? pair_params_ : bump_params_[bump_face], law_state(contacts_.pair_state[k]),
-                               energy_overlap(overlap), effective_radius);
+      e += Law::elastic_energy(bump_face < 0 ? pair_params_ : bump_params_[bump_face],
+                               law_state(contacts_.pair_state[k]), energy_overlap(overlap), effective_radius);
       if constexpr (Rolling)
         e += RollingResistance::elastic_energy(bump_face < 0 ? rolling_.pair : bump_rolling_[bump_face],
                                                contacts_.pair_state[k].rolling, effective_radius);
@@ -245,7 +252,8 @@ double DemEngine<Law, Rolling>::elastic_energy() const {
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (!contacts_.wall_touching[w][i] || !p.counted(i)) continue;
       const double overlap = p.radius[i] - wall.inward * (p.position[i][wall.axis] - wall.position);
-      e += Law::elastic_energy(wall_params_[w], law_state(contacts_.wall_state[w][i]), energy_overlap(overlap), p.radius[i]);
+      e += Law::elastic_energy(wall_params_[w], law_state(contacts_.wall_state[w][i]), energy_overlap(overlap),
+                               p.radius[i]);
       if constexpr (Rolling)
         e += RollingResistance::elastic_energy(rolling_.walls[w], contacts_.wall_state[w][i].rolling, p.radius[i]);
     }
@@ -301,13 +309,14 @@ bool DemEngine<Law, Rolling>::needs_rebuild() const {
   if (!(slack > 0.0)) return true;
   const double limit = 0.25 * slack * slack;  // (slack / 2)^2
   const std::size_t n = p.size();
-  const std::size_t moved = reduce_slices(threads_, n, std::size_t{0}, [&](int, std::size_t begin, std::size_t end, std::size_t& count) {
-    const Vec3 *position = p.position.data(), *at_build = position_at_build_.data();
-    std::size_t local = 0;  // in a register, not stored per particle through `count`
-    for (std::size_t i = begin; i < end; ++i)
-      local += !(norm2(position[i] - at_build[i]) <= limit);  // a NaN rebuilds, and is caught there
-    count = local;
-  });
+  const std::size_t moved =
+      reduce_slices(threads_, n, std::size_t{0}, [&](int, std::size_t begin, std::size_t end, std::size_t& count) {
+        const Vec3 *position = p.position.data(), *at_build = position_at_build_.data();
+        std::size_t local = 0;  // in a register, not stored per particle through `count`
+        for (std::size_t i = begin; i < end; ++i)
+          local += !(norm2(position[i] - at_build[i]) <= limit);  // a NaN rebuilds, and is caught there
+        count = local;
+      });
   return moved != 0;
 }
 
@@ -335,7 +344,8 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double before = p.velocity[i].x;
       s_.box.wrap(p.position[i], p.image[i], &p.velocity[i]);
-      if (p.counted(i)) energy_.seam_crossing_work += 0.5 * p.mass[i] * (p.velocity[i].x * p.velocity[i].x - before * before);
+      if (p.counted(i))
+        energy_.seam_crossing_work += 0.5 * p.mass[i] * (p.velocity[i].x * p.velocity[i].x - before * before);
     }
     offset_at_build_ = s_.box.shear_offset;
   } else {
@@ -411,91 +421,92 @@ void DemEngine<Law, Rolling>::pair_forces_with(double dt) {
   // Each thread owns a contiguous range of particles and adds to their forces directly; a
   // partner owned by another thread gets its share in this thread's buffer (a few percent of
   // the pairs: the particles are sorted by cell, so a range is a slab of space).
-  const ForceLoopSums sums = reduce_slices(threads, n, before, [&](int t, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
-    // Running sums in locals, stored once at the slice's end: through `sum` each contact would
-    // store them to memory.
-    double max_ratio = 0.0, bump_power = 0.0, growth_power = 0.0, seam_power = 0.0;
-    long contacts = 0, begun = 0;
-    Vec3* force = p.force.data();
-    Vec3* torque = p.torque.data();
-    Vec3* foreign_force = threads > 1 ? thread_force_[t].data() : force;
-    Vec3* foreign_torque = threads > 1 ? thread_torque_[t].data() : torque;
-    std::vector<std::uint32_t>* touched = threads > 1 ? &thread_touched_[t].list : nullptr;
-    // The list's walk through raw arrays in locals: a store to a touching flag (a byte, which may
-    // alias anything) would otherwise reload every array's address for the next listed pair.
-    const Vec3* position = p.position.data();
-    const double* radius = p.radius.data();
-    const std::uint32_t *offsets = pairs_.offsets.data(), *partner = pairs_.partner.data();
-    const std::uint8_t* shift = pairs_.shift.data();
-    const Vec3* shift_vector = shifts.data();
-    std::uint8_t* touching = contacts_.pair_touching.data();
-    for (std::size_t i = begin; i < end; ++i) {
-      const Vec3 xi = position[i];
-      const double ri = radius[i];
-      const long counted = !p.ghost[i];  // a pair is counted on the rank owning its list's particle
-      for (std::uint32_t k = offsets[i]; k < offsets[i + 1]; ++k) {
-        const std::uint32_t j = partner[k];
-        const Vec3 d = xi - (position[j] + shift_vector[shift[k]]);
-        const double rj = radius[j];
-        const double r2 = norm2(d);
-        if (!pair_in_contact(r2, i, j, ri, rj, touching[k])) {
-          touching[k] = 0;
-          continue;
+  const ForceLoopSums sums =
+      reduce_slices(threads, n, before, [&](int t, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
+        // Running sums in locals, stored once at the slice's end: through `sum` each contact would
+        // store them to memory.
+        double max_ratio = 0.0, bump_power = 0.0, growth_power = 0.0, seam_power = 0.0;
+        long contacts = 0, begun = 0;
+        Vec3* force = p.force.data();
+        Vec3* torque = p.torque.data();
+        Vec3* foreign_force = threads > 1 ? thread_force_[t].data() : force;
+        Vec3* foreign_torque = threads > 1 ? thread_torque_[t].data() : torque;
+        std::vector<std::uint32_t>* touched = threads > 1 ? &thread_touched_[t].list : nullptr;
+        // The list's walk through raw arrays in locals: a store to a touching flag (a byte, which may
+        // alias anything) would otherwise reload every array's address for the next listed pair.
+        const Vec3* position = p.position.data();
+        const double* radius = p.radius.data();
+        const std::uint32_t *offsets = pairs_.offsets.data(), *partner = pairs_.partner.data();
+        const std::uint8_t* shift = pairs_.shift.data();
+        const Vec3* shift_vector = shifts.data();
+        std::uint8_t* touching = contacts_.pair_touching.data();
+        for (std::size_t i = begin; i < end; ++i) {
+          const Vec3 xi = position[i];
+          const double ri = radius[i];
+          const long counted = !p.ghost[i];  // a pair is counted on the rank owning its list's particle
+          for (std::uint32_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+            const std::uint32_t j = partner[k];
+            const Vec3 d = xi - (position[j] + shift_vector[shift[k]]);
+            const double rj = radius[j];
+            const double r2 = norm2(d);
+            if (!pair_in_contact(r2, i, j, ri, rj, touching[k])) {
+              touching[k] = 0;
+              continue;
+            }
+            if (!touching[k]) {
+              touching[k] = 1;
+              contacts_.pair_state[k] = State{};
+              begun += counted;
+            }
+            const std::uint8_t code = shift[k];
+            // A sliding row's image moves relative to its particle; in a still box no image does.
+            const Vec3 image_velocity = Extras ? s_.box.image_velocity(code) : Vec3{};
+            const ContactKinematics c = pair_kinematics<Extras>(i, j, d, std::sqrt(r2), image_velocity);
+            int bump_face = -1;  // unless one is a wall bump
+            if constexpr (Bumps) bump_face = std::max(p.wall[i], p.wall[j]);
+            const Params& params = Bumps && bump_face >= 0 ? bump_params_[bump_face] : pair_params_;
+            const ContactForce f = Law::force(params, law_state(contacts_.pair_state[k]), c, dt);
+            const Vec3 total = f.normal * c.normal + f.tangential;
+            const Vec3 arm = cross(c.normal, f.tangential);  // torque = -r n x F_t on both
+            force[i] += total;
+            torque[i] -= ri * arm;
+            Vec3 torque_j = -rj * arm;
+            if constexpr (Rolling) {  // a couple: +M on i, -M on j
+              const RollingParams& rolling = Bumps && bump_face >= 0 ? bump_rolling_[bump_face] : rolling_.pair;
+              const Vec3 m = RollingResistance::torque(rolling, contacts_.pair_state[k].rolling,
+                                                       rolling_kinematics(rolling, i, j, c, f.normal), dt);
+              torque[i] += m;
+              torque_j -= m;
+            }
+            if (j >= begin && j < end) {
+              force[j] -= total;
+              torque[j] += torque_j;
+            } else {
+              foreign_force[j] -= total;
+              foreign_torque[j] += torque_j;
+              if (touched) touched->push_back(j);
+            }
+            max_ratio = std::max(max_ratio, c.overlap / (2.0 * std::min(ri, rj)));
+            contacts += counted;
+            if constexpr (Bumps) {
+              if (bump_face >= 0 && counted)  // a bump's work on its free partner, at the bump's velocity
+                bump_power += dot(p.wall[i] >= 0 ? -total : total, s_.bump_velocity[bump_face]);
+            }
+            if constexpr (Extras) {
+              if (growth_rate > 0.0 && counted)
+                growth_power += f.normal * growth_rate * ((ri < p.target_radius[i]) + (rj < p.target_radius[j]));
+              if (sliding && counted)  // F . (v_j's image - v_j): the seam's work
+                seam_power += total.x * image_velocity.x;
+            }
+          }
         }
-        if (!touching[k]) {
-          touching[k] = 1;
-          contacts_.pair_state[k] = State{};
-          begun += counted;
-        }
-        const std::uint8_t code = shift[k];
-        // A sliding row's image moves relative to its particle; in a still box no image does.
-        const Vec3 image_velocity = Extras ? s_.box.image_velocity(code) : Vec3{};
-        const ContactKinematics c = pair_kinematics<Extras>(i, j, d, std::sqrt(r2), image_velocity);
-        int bump_face = -1;  // unless one is a wall bump
-        if constexpr (Bumps) bump_face = std::max(p.wall[i], p.wall[j]);
-        const Params& params = Bumps && bump_face >= 0 ? bump_params_[bump_face] : pair_params_;
-        const ContactForce f = Law::force(params, law_state(contacts_.pair_state[k]), c, dt);
-        const Vec3 total = f.normal * c.normal + f.tangential;
-        const Vec3 arm = cross(c.normal, f.tangential);  // torque = -r n x F_t on both
-        force[i] += total;
-        torque[i] -= ri * arm;
-        Vec3 torque_j = -rj * arm;
-        if constexpr (Rolling) {  // a couple: +M on i, -M on j
-          const RollingParams& rolling = Bumps && bump_face >= 0 ? bump_rolling_[bump_face] : rolling_.pair;
-          const Vec3 m = RollingResistance::torque(rolling, contacts_.pair_state[k].rolling,
-                                                   rolling_kinematics(rolling, i, j, c, f.normal), dt);
-          torque[i] += m;
-          torque_j -= m;
-        }
-        if (j >= begin && j < end) {
-          force[j] -= total;
-          torque[j] += torque_j;
-        } else {
-          foreign_force[j] -= total;
-          foreign_torque[j] += torque_j;
-          if (touched) touched->push_back(j);
-        }
-        max_ratio = std::max(max_ratio, c.overlap / (2.0 * std::min(ri, rj)));
-        contacts += counted;
-        if constexpr (Bumps) {
-          if (bump_face >= 0 && counted)  // a bump's work on its free partner, at the bump's velocity
-            bump_power += dot(p.wall[i] >= 0 ? -total : total, s_.bump_velocity[bump_face]);
-        }
-        if constexpr (Extras) {
-          if (growth_rate > 0.0 && counted)
-            growth_power += f.normal * growth_rate * ((ri < p.target_radius[i]) + (rj < p.target_radius[j]));
-          if (sliding && counted)  // F . (v_j's image - v_j): the seam's work
-            seam_power += total.x * image_velocity.x;
-        }
-      }
-    }
-    sum.max_ratio = max_ratio;
-    sum.boundary_power = bump_power;
-    sum.growth_power = growth_power;
-    sum.seam_power = seam_power;
-    sum.contacts = contacts;
-    sum.begun = begun;
-  });
+        sum.max_ratio = max_ratio;
+        sum.boundary_power = bump_power;
+        sum.growth_power = growth_power;
+        sum.seam_power = seam_power;
+        sum.contacts = contacts;
+        sum.begun = begun;
+      });
   if (threads > 1) {  // the buffers' shares, each entry cleared after use (listed once per pair)
     for (int t = 0; t < threads; ++t) {
       for (const std::uint32_t j : thread_touched_[t].list) {
@@ -530,37 +541,39 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
     auto& touching = contacts_.wall_touching[w];
     Vec3 normal;
     normal[wall.axis] = wall.inward;
-    const ForceLoopSums sums = reduce_slices(threads_, n, ForceLoopSums{}, [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
-      ForceLoopSums local;  // in registers, stored once at the slice's end
-      for (std::size_t i = begin; i < end; ++i) {
-        if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
-        const double ri = p.radius[i];
-        const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
-        if (!wall_in_contact(gap, ri, touching[i], params)) {
-          touching[i] = 0;
-          continue;
-        }
-        if (!touching[i]) {
-          touching[i] = 1;
-          states[i] = State{};
-          ++local.begun;
-        }
-        const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
-        const ContactForce f = Law::force(params, law_state(states[i]), c, dt);
-        const Vec3 total = f.normal * normal + f.tangential;
-        p.force[i] += total;
-        p.torque[i] -= ri * cross(normal, f.tangential);
-        if constexpr (Rolling)
-          p.torque[i] += RollingResistance::torque(rolling_.walls[w], states[i].rolling,
-                                                   rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal), dt);
-        local.boundary_power += dot(total, wall.velocity);
-        local.force += total;
-        if (growth_rate > 0.0 && ri < p.target_radius[i]) local.growth_power += f.normal * growth_rate;
-        local.max_ratio = std::max(local.max_ratio, c.overlap / (2.0 * ri));
-        ++local.contacts;
-      }
-      sum = local;
-    });
+    const ForceLoopSums sums =
+        reduce_slices(threads_, n, ForceLoopSums{}, [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
+          ForceLoopSums local;  // in registers, stored once at the slice's end
+          for (std::size_t i = begin; i < end; ++i) {
+            if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
+            const double ri = p.radius[i];
+            const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
+            if (!wall_in_contact(gap, ri, touching[i], params)) {
+              touching[i] = 0;
+              continue;
+            }
+            if (!touching[i]) {
+              touching[i] = 1;
+              states[i] = State{};
+              ++local.begun;
+            }
+            const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
+            const ContactForce f = Law::force(params, law_state(states[i]), c, dt);
+            const Vec3 total = f.normal * normal + f.tangential;
+            p.force[i] += total;
+            p.torque[i] -= ri * cross(normal, f.tangential);
+            if constexpr (Rolling)
+              p.torque[i] +=
+                  RollingResistance::torque(rolling_.walls[w], states[i].rolling,
+                                            rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal), dt);
+            local.boundary_power += dot(total, wall.velocity);
+            local.force += total;
+            if (growth_rate > 0.0 && ri < p.target_radius[i]) local.growth_power += f.normal * growth_rate;
+            local.max_ratio = std::max(local.max_ratio, c.overlap / (2.0 * ri));
+            ++local.contacts;
+          }
+          sum = local;
+        });
     wall_force_[w] = sums.force;
     all += sums;
   }

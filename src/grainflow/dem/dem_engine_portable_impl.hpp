@@ -25,9 +25,10 @@ void DemEngine<Law, Rolling>::portable_share(PortableParticles& particles, Porta
     for (std::uint32_t k = pairs_.offsets[i]; k < pairs_.offsets[i + 1]; ++k)
       if (contacts_.pair_touching[k]) {
         const std::uint32_t j = pairs_.partner[k];
-        contacts.pairs.push_back({p.id[i], p.id[j],
-                                  ContactStore<State>::image_key(pairs_.shift[k], p.image[i], p.image[j], s_.box.shear_turns),
-                                  contacts_.pair_state[k]});
+        contacts.pairs.push_back(
+            {p.id[i], p.id[j],
+             ContactStore<State>::image_key(pairs_.shift[k], p.image[i], p.image[j], s_.box.shear_turns),
+             contacts_.pair_state[k]});
       }
     for (std::size_t w = 0; w < contacts_.wall_state.size(); ++w)
       if (contacts_.wall_touching[w][i])
@@ -38,7 +39,8 @@ void DemEngine<Law, Rolling>::portable_share(PortableParticles& particles, Porta
 }
 
 template <class Law, bool Rolling>
-void DemEngine<Law, Rolling>::restore_portable(const PortableParticles& particles, const Portable& contacts, bool totals_here) {
+void DemEngine<Law, Rolling>::restore_portable(const PortableParticles& particles, const Portable& contacts,
+                                               bool totals_here) {
   ParticleStore& p = s_.particles;
   contacts_.restore(contacts.pairs, pairs_, p.id, p.image, s_.box.shear_turns);
   std::vector<std::int64_t> index(particles.particles.size(), -1);

@@ -16,10 +16,10 @@ namespace grainflow::dem {
 
 // A flat wall on one face of the box: a boundary sphere of infinite mass (section 2.6.2).
 struct FlatWall : FaceWall {
-  double base_position = 0.0;   // m, plane coordinate at t = 0
+  double base_position = 0.0;  // m, plane coordinate at t = 0
   WallMotion motion;
-  double friction = 0.0;        // the contact law's own wall keys are in the case (WallConfig::contact)
-  bool bumpy = false;           // backing plane of a bumpy wall
+  double friction = 0.0;  // the contact law's own wall keys are in the case (WallConfig::contact)
+  bool bumpy = false;     // backing plane of a bumpy wall
 
   // Position and velocity at time t (`since` = t: at() is exact only now, as the motion is not linear).
   void move_to(double t) {
@@ -36,11 +36,11 @@ struct DemState {
   int dimension = 3;
   ParticleStore particles;
   PeriodicBox box;
-  Vec3 gravity;              // m/s^2
-  double time = 0.0;         // s
-  double time_step = 0.0;    // s
+  Vec3 gravity;            // m/s^2
+  double time = 0.0;       // s
+  double time_step = 0.0;  // s
   long step = 0;
-  double skin = 0.0;         // m
+  double skin = 0.0;            // m
   double cohesion_reach = 0.0;  // m: how far apart an adhesive contact's surfaces may be pulled before it breaks
   std::vector<FlatWall> walls;
   std::array<Vec3, 6> bump_velocity{};      // m/s of the bumps of each face

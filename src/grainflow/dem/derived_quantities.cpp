@@ -9,7 +9,6 @@
 
 namespace grainflow::dem {
 
-
 double hertz_max_overlap(double youngs_modulus, double poisson_ratio, double diameter, double mass, double speed) {
   const double base = 15.0 * mass * speed * speed * (1.0 - poisson_ratio * poisson_ratio) /
                       (4.0 * youngs_modulus * std::sqrt(diameter));
@@ -31,7 +30,8 @@ double floor_peak_speed(const CaseConfig& c) {
   // Maximise |v(t)| over one period numerically (the phases differ by axis).
   double f_min = 0.0;
   for (int axis = 0; axis < 3; ++axis)
-    if (c.drive.frequency[axis] > 0.0 && (f_min == 0.0 || c.drive.frequency[axis] < f_min)) f_min = c.drive.frequency[axis];
+    if (c.drive.frequency[axis] > 0.0 && (f_min == 0.0 || c.drive.frequency[axis] < f_min))
+      f_min = c.drive.frequency[axis];
   if (f_min == 0.0) return 0.0;
   double speed_sq = 0.0;
   const int samples = 2000;
@@ -94,7 +94,8 @@ DerivedQuantities derive(const CaseConfig& c) {
       const double radius = 0.5 * d.max_diameter;
       d.cohesion_reach = -Law::detach_overlap(p, radius);
       for (int f = 0; f < 6; ++f)
-        d.cohesion_reach = std::max(d.cohesion_reach, -Law::detach_overlap(Law::wall_params(p, c.walls[f].contact, 0.0), radius));
+        d.cohesion_reach =
+            std::max(d.cohesion_reach, -Law::detach_overlap(Law::wall_params(p, c.walls[f].contact, 0.0), radius));
     }
   });
   if (c.run.time_step > 0.0) {
@@ -103,7 +104,8 @@ DerivedQuantities derive(const CaseConfig& c) {
   }
   if (rolling_model_named(c.contact.rolling_model) != RollingModel::none) {
     const RollingParams rolling = rolling_params(c.contact, c.contact.rolling_friction, d.normal_stiffness);
-    for (auto& line : describe_rolling(rolling, d.reference_mass, 0.5 * ref.diameter, d.time_step)) d.law_lines.push_back(line);
+    for (auto& line : describe_rolling(rolling, d.reference_mass, 0.5 * ref.diameter, d.time_step))
+      d.law_lines.push_back(line);
   }
   d.steps_per_contact = d.contact_duration > 0.0 ? d.contact_duration / d.time_step : 0.0;
   // n of eq. (2-5-4) for the step in use: n = pi e sqrt(m / 2K1) / dt.
@@ -135,8 +137,8 @@ DerivedQuantities derive(const CaseConfig& c) {
   // A sphere hitting the (infinitely heavy) floor at its peak speed: alpha = v sqrt(m / K1).
   d.expected_floor_overlap = d.floor_peak_speed * std::sqrt(d.reference_mass / d.normal_stiffness);
   if (ref.youngs_modulus > 0.0 && d.floor_peak_speed > 0.0)
-    d.hertz_k1 = hertz_equivalent_k1(ref.youngs_modulus, ref.poisson_ratio, ref.diameter, d.reference_mass,
-                                     d.floor_peak_speed);
+    d.hertz_k1 =
+        hertz_equivalent_k1(ref.youngs_modulus, ref.poisson_ratio, ref.diameter, d.reference_mass, d.floor_peak_speed);
 
   // Mass hold-up over the floor area normal to gravity (eq. 4-1-3): m_t = sum(pi d^3/6) / (A d); in
   // 2D the floor's length and the discs' areas.

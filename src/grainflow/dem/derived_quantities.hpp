@@ -51,23 +51,23 @@ struct DerivedQuantities {
   double contact_duration = 0.0;         // s, binary contact of two reference spheres
   std::vector<CheckLine> law_lines;      // what `grainflow check` prints of the law
   std::optional<ParameterProblem> law_problem;  // parameters the law cannot run
-  double time_step = 0.0;                // s, as used: the law's bound with run.collision_steps, or run.time_step
-  double time_step_lan = 0.0;            // s, the law's bound with Lan's n = 20 steps per collision
+  double time_step = 0.0;      // s, as used: the law's bound with run.collision_steps, or run.time_step
+  double time_step_lan = 0.0;  // s, the law's bound with Lan's n = 20 steps per collision
   bool time_step_from_case = false;
-  double steps_per_contact = 0.0;        // contact_duration / time_step
-  double collision_steps = 0.0;          // n of eq. (2-5-4) for the time step used
-  double floor_peak_speed = 0.0;         // m/s, peak speed of the driven face
-  double expected_floor_overlap = 0.0;   // m, linear-spring overlap of a reference sphere hit at that speed
-  std::optional<double> hertz_k1;        // N/m, when youngs_modulus is given
-  double mass_holdup = 0.0;              // m_t = N pi d^2 / (6 A), eq. (4-1-3)
+  double steps_per_contact = 0.0;              // contact_duration / time_step
+  double collision_steps = 0.0;                // n of eq. (2-5-4) for the time step used
+  double floor_peak_speed = 0.0;               // m/s, peak speed of the driven face
+  double expected_floor_overlap = 0.0;         // m, linear-spring overlap of a reference sphere hit at that speed
+  std::optional<double> hertz_k1;              // N/m, when youngs_modulus is given
+  double mass_holdup = 0.0;                    // m_t = N pi d^2 / (6 A), eq. (4-1-3)
   double boundary_fluctuation_velocity = 0.0;  // V_b = V / sqrt(g d), V^2 = <v_floor^2>/3 (eq. 4-1-2)
-  double shaking_acceleration = 0.0;     // Gamma = a omega^2 / g along gravity
+  double shaking_acceleration = 0.0;           // Gamma = a omega^2 / g along gravity
   int gravity_axis = 1;
-  double gravity_magnitude = 0.0;        // m/s^2
-  double skin = 0.0;                     // m
-  double cohesion_reach = 0.0;           // m, an adhesive law's largest neck (-detach_overlap at R* = r_max); 0 without
-  double expansion_time = 0.0;           // s, radius expansion as used (particles.expansion_time or the default)
-  double max_diameter = 0.0;             // m
+  double gravity_magnitude = 0.0;  // m/s^2
+  double skin = 0.0;               // m
+  double cohesion_reach = 0.0;     // m, an adhesive law's largest neck (-detach_overlap at R* = r_max); 0 without
+  double expansion_time = 0.0;     // s, radius expansion as used (particles.expansion_time or the default)
+  double max_diameter = 0.0;       // m
   long moving_particles = 0, frozen_particles = 0;
 };
 

@@ -60,7 +60,7 @@ class DomainExchange {
   const std::vector<int>& neighbours() const { return neighbours_; }
   long long migrated() const { return migrated_; }  // particles this rank sent to another owner
   long long rebalances() const { return rebalances_; }
-  long long ghosts() const {                        // copies this rank holds now
+  long long ghosts() const {  // copies this rank holds now
     long long n = 0;
     for (const auto& ids : receive_ids_) n += static_cast<long long>(ids.size());
     return n;
@@ -226,7 +226,8 @@ class DomainExchange {
           if (grid_.cut(a)) counts[a * kBalanceBins + grid_.bin_of(p.position[i], a, kBalanceBins)] += 1.0;
     comm_.sum_in_place(counts.data(), counts.size());
     std::array<std::vector<double>, 3> by_axis;
-    for (int a = 0; a < 3; ++a) by_axis[a].assign(counts.begin() + a * kBalanceBins, counts.begin() + (a + 1) * kBalanceBins);
+    for (int a = 0; a < 3; ++a)
+      by_axis[a].assign(counts.begin() + a * kBalanceBins, counts.begin() + (a + 1) * kBalanceBins);
     grid_.rebalance(by_axis);
     neighbours_ = grid_.neighbours(comm_.rank());
     ++rebalances_;

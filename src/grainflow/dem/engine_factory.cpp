@@ -12,15 +12,17 @@ DemEngineVariant make_engine(const CaseConfig& c, DemState state, int threads, c
   return visit_contact_law(c.contact.model, [&]<ContactLaw Law>() {
     const typename Law::Params pair = Law::pair_params(c.contact, reference);
     std::vector<typename Law::Params> walls;
-    for (const auto& wall : state.walls) walls.push_back(Law::wall_params(pair, c.walls[wall.face].contact, wall.friction));
+    for (const auto& wall : state.walls)
+      walls.push_back(Law::wall_params(pair, c.walls[wall.face].contact, wall.friction));
     if (rolling_model_named(c.contact.rolling_model) == RollingModel::none)
-      return DemEngineVariant(std::in_place_type<DemEngine<Law, false>>, std::move(state), pair, std::move(walls), threads,
-                              c.run.sort_every, domain);
+      return DemEngineVariant(std::in_place_type<DemEngine<Law, false>>, std::move(state), pair, std::move(walls),
+                              threads, c.run.sort_every, domain);
     RollingSetup rolling;
     rolling.pair = rolling_params(c.contact, c.contact.rolling_friction, d.normal_stiffness);
     for (const auto& wall : state.walls) {
       const double mu_r = c.walls[wall.face].rolling_friction;
-      rolling.walls.push_back(rolling_params(c.contact, mu_r >= 0.0 ? mu_r : c.contact.rolling_friction, d.normal_stiffness));
+      rolling.walls.push_back(
+          rolling_params(c.contact, mu_r >= 0.0 ? mu_r : c.contact.rolling_friction, d.normal_stiffness));
     }
     return DemEngineVariant(std::in_place_type<DemEngine<Law, true>>, std::move(state), pair, std::move(walls), threads,
                             c.run.sort_every, domain, std::move(rolling));

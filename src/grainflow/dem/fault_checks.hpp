@@ -60,8 +60,8 @@ inline std::string describe_particle(const DemState& s, std::size_t i) {
 
 // The engine's message for particle i with a non-finite position or velocity.
 inline NonFiniteState non_finite_state(const DemState& s, std::size_t i) {
-  return NonFiniteState("non-finite state: " + describe_particle(s, i) + " at t = " + fault_detail::format("%.9g", s.time) +
-                        " s (step " + std::to_string(s.step) + ")");
+  return NonFiniteState("non-finite state: " + describe_particle(s, i) +
+                        " at t = " + fault_detail::format("%.9g", s.time) + " s (step " + std::to_string(s.step) + ")");
 }
 
 // The first particle (by index) whose position or velocity is NaN or infinite.
@@ -74,11 +74,11 @@ inline std::optional<std::size_t> first_non_finite(const ParticleStore& p) {
 // The likely cause of a blow-up: the time step against the contact law's bound (eq. 2-5-4 for
 // Walton–Braun) with n = 20 steps per collision (Lan 1994), for the lightest moving species.
 inline std::string time_step_cause(const DerivedQuantities& d) {
-  std::string text = "likely cause: the time step dt = " + fault_detail::format("%.4g", d.time_step) +
-                     " s is too large for " + fault_detail::stiffness_now(d) + " (" + fault_detail::format("%.3g", d.steps_per_contact) +
-                     " steps per contact); the contact law's time-step bound with n = " +
-                     std::to_string(kLanCollisionSteps) + " steps per collision suggests dt <= " +
-                     fault_detail::format("%.4g", d.time_step_lan) + " s";
+  std::string text =
+      "likely cause: the time step dt = " + fault_detail::format("%.4g", d.time_step) + " s is too large for " +
+      fault_detail::stiffness_now(d) + " (" + fault_detail::format("%.3g", d.steps_per_contact) +
+      " steps per contact); the contact law's time-step bound with n = " + std::to_string(kLanCollisionSteps) +
+      " steps per collision suggests dt <= " + fault_detail::format("%.4g", d.time_step_lan) + " s";
   text += d.time_step_from_case ? " (lower run.time_step or remove it)" : " (raise run.collision_steps)";
   return text;
 }
@@ -96,8 +96,8 @@ inline void check_finite(const DemState& s, const DerivedQuantities& d) {
 // A free particle more than one diameter beyond a wall's plane has gone through it.
 struct Escape {
   std::size_t index = 0;
-  int wall = 0;           // index into DemState::walls
-  double beyond = 0.0;    // m, how far its centre lies behind the plane
+  int wall = 0;         // index into DemState::walls
+  double beyond = 0.0;  // m, how far its centre lies behind the plane
 };
 
 inline std::optional<Escape> first_escape(const DemState& s) {
@@ -127,13 +127,16 @@ inline void check_escape(const DemState& s, const DerivedQuantities& d) {
   // (Lan's criterion) K1 >= m (v / 0.01 d)^2.
   const double penetration = speed * std::sqrt(m / d.normal_stiffness);
   const double needed_k1 = m * std::pow(speed / (0.02 * r), 2);
-  std::string text = describe_particle(s, i) + " went through the " + kFaceNames[wall.face] + " wall at t = " +
-                     fault_detail::format("%.9g", s.time) + " s: its centre lies " +
+  std::string text = describe_particle(s, i) + " went through the " + kFaceNames[wall.face] +
+                     " wall at t = " + fault_detail::format("%.9g", s.time) + " s: its centre lies " +
                      fault_detail::format("%.4g", escape->beyond) + " m beyond the wall (more than a diameter, " +
-                     fault_detail::format("%.4g", 2.0 * r) + " m); likely cause: too soft a wall or too large a time step "
-                     "for the impact speed: at " + fault_detail::format("%.4g", speed) + " m/s a wall with " +
-                     fault_detail::stiffness_now(d) + " lets it in " + fault_detail::format("%.4g", penetration) +
-                     " m; keeping that below 1% of d needs " + fault_detail::stiffness_needed(d, needed_k1) + ", and dt = " + fault_detail::format("%.4g", d.time_step) + " s moves it " +
+                     fault_detail::format("%.4g", 2.0 * r) +
+                     " m); likely cause: too soft a wall or too large a time step "
+                     "for the impact speed: at " +
+                     fault_detail::format("%.4g", speed) + " m/s a wall with " + fault_detail::stiffness_now(d) +
+                     " lets it in " + fault_detail::format("%.4g", penetration) +
+                     " m; keeping that below 1% of d needs " + fault_detail::stiffness_needed(d, needed_k1) +
+                     ", and dt = " + fault_detail::format("%.4g", d.time_step) + " s moves it " +
                      fault_detail::format("%.4g", speed * d.time_step) + " m per step";
   throw RunError(text);
 }
@@ -161,7 +164,8 @@ inline LargestOverlap largest_overlap(const DemState& s, const NeighborPairs& pa
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.motion[i] != Motion::free) continue;
       const FlatWall& wall = s.walls[w];
-      const double ratio = (p.radius[i] - wall.inward * (p.position[i][wall.axis] - wall.position)) / (2.0 * p.radius[i]);
+      const double ratio =
+          (p.radius[i] - wall.inward * (p.position[i][wall.axis] - wall.position)) / (2.0 * p.radius[i]);
       if (ratio > best.ratio) best = {ratio, i, i, static_cast<int>(w)};
     }
   return best;
@@ -172,8 +176,9 @@ inline LargestOverlap largest_overlap(const DemState& s, const NeighborPairs& pa
 inline std::string overlap_halt_message(const DemState& s, const NeighborPairs& pairs, const DerivedQuantities& d,
                                         double max_ratio, double halt_overlap) {
   using fault_detail::format;
-  std::string text = "maximum overlap / diameter " + format("%.4g", max_ratio) + " exceeded run.halt_overlap = " +
-                     format("%.4g", halt_overlap) + " before t = " + format("%.9g", s.time) + " s";
+  std::string text = "maximum overlap / diameter " + format("%.4g", max_ratio) +
+                     " exceeded run.halt_overlap = " + format("%.4g", halt_overlap) +
+                     " before t = " + format("%.9g", s.time) + " s";
   const LargestOverlap now = largest_overlap(s, pairs);
   if (now.ratio > 0.0) {
     const auto& id = s.particles.id;

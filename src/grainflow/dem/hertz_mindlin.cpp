@@ -109,8 +109,8 @@ double HertzMindlin::damping_for(double restitution) {
   return c;
 }
 
-HertzMindlin::Params HertzMindlin::make(double youngs_modulus, double poisson_ratio, double restitution, double friction,
-                                        double other_youngs_modulus, double other_poisson_ratio) {
+HertzMindlin::Params HertzMindlin::make(double youngs_modulus, double poisson_ratio, double restitution,
+                                        double friction, double other_youngs_modulus, double other_poisson_ratio) {
   Params p;
   p.youngs_modulus = youngs_modulus;
   p.poisson_ratio = poisson_ratio;
@@ -143,8 +143,8 @@ HertzMindlin::Params HertzMindlin::pair_params(const ContactConfig& contact, con
 HertzMindlin::Params HertzMindlin::wall_params(const Params& pair, const ContactParameters& wall, double friction) {
   const double wall_modulus = wall.get("youngs_modulus", kRigid);
   const double wall_poisson = wall.get("poisson_ratio", wall.has("youngs_modulus") ? 0.3 : 0.0);
-  return make(pair.youngs_modulus, pair.poisson_ratio, wall.get("restitution", pair.restitution), friction, wall_modulus,
-              wall_poisson);
+  return make(pair.youngs_modulus, pair.poisson_ratio, wall.get("restitution", pair.restitution), friction,
+              wall_modulus, wall_poisson);
 }
 
 std::optional<ParameterProblem> HertzMindlin::material_problem(const std::vector<SpeciesConfig>& species,
@@ -152,7 +152,8 @@ std::optional<ParameterProblem> HertzMindlin::material_problem(const std::vector
   for (const SpeciesConfig& s : species) {
     if (!(s.youngs_modulus > 0.0))
       return ParameterProblem{"youngs_modulus", fmt::format("species '{}' has none: contact.model = \"{}\" needs each "
-                                                            "species' Young's modulus (Pa) and poisson_ratio", s.name, law)};
+                                                            "species' Young's modulus (Pa) and poisson_ratio",
+                                                            s.name, law)};
     if (s.youngs_modulus != species.front().youngs_modulus || s.poisson_ratio != species.front().poisson_ratio)
       return ParameterProblem{"youngs_modulus",
                               fmt::format("species '{}' and '{}' are of different materials; {} takes one material for "
@@ -204,8 +205,8 @@ std::vector<CheckLine> HertzMindlin::describe(const Params& p, const HeadOnImpac
           {"e (any impact speed)", fmt::format("{:.6g}  (damping constant {:.6g})", p.restitution, p.damping)},
           {"Hertz duration", fmt::format("{:.6g} s at {:.6g} m/s  (peak overlap {:.4g} m)", b.duration, impact.speed,
                                          peak_overlap(p, impact))},
-          {"Rayleigh time", fmt::format("{:.6g} s  (time step bound {:.3g} of it)", rayleigh_time(p, impact),
-                                        kRayleighFraction)}};
+          {"Rayleigh time",
+           fmt::format("{:.6g} s  (time step bound {:.3g} of it)", rayleigh_time(p, impact), kRayleighFraction)}};
 }
 
 // The engine's time loop for this law, without and with rolling resistance, compiled here once

@@ -29,12 +29,12 @@ struct HertzMindlin {
   struct Params {
     double youngs_modulus = 0.0;  // Pa, the particles' material (a wall of its own combines with it)
     double poisson_ratio = 0.0;
-    double e_star = 0.0;          // Pa, 1/E* = (1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j
-    double g_star = 0.0;          // Pa, 1/G* = 2 (2 - nu_i)(1 + nu_i)/E_i + 2 (2 - nu_j)(1 + nu_j)/E_j
-    double restitution = 1.0;     // e, the binary normal restitution asked for
-    double damping = 0.0;         // c of F_damp = -c sqrt(m* S) v, the same for the normal and tangential parts
-    double scaled_duration = 0.0; // the force's duration in units of (m* v^2 / k)^2/5 / v, k = 4/3 E* sqrt(R*)
-    double friction = 0.0;        // Coulomb coefficient mu
+    double e_star = 0.0;           // Pa, 1/E* = (1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j
+    double g_star = 0.0;           // Pa, 1/G* = 2 (2 - nu_i)(1 + nu_i)/E_i + 2 (2 - nu_j)(1 + nu_j)/E_j
+    double restitution = 1.0;      // e, the binary normal restitution asked for
+    double damping = 0.0;          // c of F_damp = -c sqrt(m* S) v, the same for the normal and tangential parts
+    double scaled_duration = 0.0;  // the force's duration in units of (m* v^2 / k)^2/5 / v, k = 4/3 E* sqrt(R*)
+    double friction = 0.0;         // Coulomb coefficient mu
   };
 
   struct State {
@@ -67,7 +67,8 @@ struct HertzMindlin {
     // The patch's radius shrinks as sqrt(delta) while the contact unloads.
     const double unloading = c.overlap < s.overlap ? std::sqrt(c.overlap / s.overlap) : 1.0;
     s.overlap = c.overlap;
-    out.tangential = mindlin_tangential(p, s.tangential_force, contact_radius, unloading, c, dt, p.friction * out.normal);
+    out.tangential =
+        mindlin_tangential(p, s.tangential_force, contact_radius, unloading, c, dt, p.friction * out.normal);
     return out;
   }
 
@@ -103,7 +104,8 @@ struct HertzMindlin {
   // The Hertz spring's 8/15 E* sqrt(R*) delta^5/2 and the tangential spring's F^2 / (2 S_t).
   static double elastic_energy(const Params& p, const State& s, double overlap, double effective_radius) {
     const double contact_radius = std::sqrt(effective_radius * overlap);
-    return (8.0 / 15.0) * p.e_star * contact_radius * overlap * overlap + mindlin_energy(p, s.tangential_force, contact_radius);
+    return (8.0 / 15.0) * p.e_star * contact_radius * overlap * overlap +
+           mindlin_energy(p, s.tangential_force, contact_radius);
   }
 
   // [contact]: restitution (default 0.9); E and nu are the species' youngs_modulus and poisson_ratio.
@@ -119,7 +121,8 @@ struct HertzMindlin {
     return material_problem(species, name);
   }
   // The same, for any law of this material model called `law` (in the message).
-  static std::optional<ParameterProblem> material_problem(const std::vector<SpeciesConfig>& species, std::string_view law);
+  static std::optional<ParameterProblem> material_problem(const std::vector<SpeciesConfig>& species,
+                                                          std::string_view law);
 
   // The damped Hertz impact at the impact's speed: e as asked, duration from the scaled equation.
   static BinaryContact binary_contact(const Params& p, const HeadOnImpact& impact);

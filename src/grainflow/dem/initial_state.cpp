@@ -77,7 +77,8 @@ void add_bumps(const CaseConfig& c, DemState& s) {
         x[a] = c.domain.lo[a] + (column + 0.5) * lattice.column_spacing + offset;
         x[b] = c.domain.lo[b] + (row + 0.5) * lattice.row_spacing;
         if (x[a] >= c.domain.hi[a]) x[a] -= c.domain.length(a);
-        add_particle(s.particles, s.dimension, species, species_index, lattice.bump_diameter, x, Motion::wall_bump, wall.face);
+        add_particle(s.particles, s.dimension, species, species_index, lattice.bump_diameter, x, Motion::wall_bump,
+                     wall.face);
         s.particles.velocity.back() = wall.velocity;
         ++species.count;
       }
@@ -198,7 +199,8 @@ void place_random(const CaseConfig& c, double expansion_time, DemState& s, std::
     largest_deficit = std::max(largest_deficit, p.target_radius[i] - p.radius[i]);
   }
   if (largest_deficit > 0.0) {
-    s.expansion_rate = expansion_time > 0.0 ? largest_deficit / expansion_time : std::numeric_limits<double>::infinity();
+    s.expansion_rate =
+        expansion_time > 0.0 ? largest_deficit / expansion_time : std::numeric_limits<double>::infinity();
   }
 }
 

@@ -65,8 +65,8 @@ BinaryContact Jkr::binary_contact(const Params& p, const HeadOnImpact& impact) {
   using Key = std::array<double, 7>;
   static std::mutex mutex;
   static std::map<Key, BinaryContact> known;
-  const Key key{p.material.e_star, p.material.g_star, p.material.damping, p.surface_energy, impact.effective_mass,
-                impact.effective_radius, impact.speed};
+  const Key key{p.material.e_star,     p.material.g_star,       p.material.damping, p.surface_energy,
+                impact.effective_mass, impact.effective_radius, impact.speed};
   {
     const std::lock_guard<std::mutex> lock(mutex);
     if (const auto it = known.find(key); it != known.end()) return it->second;
@@ -109,8 +109,8 @@ BinaryContact Jkr::integrate_impact(const Params& p, const HeadOnImpact& impact)
     speed -= 0.5 * dt * a;
     time += dt;
     // The force just found the contact radius at this overlap; the state keeps it.
-    const double energy = 0.5 * impact.effective_mass * speed * speed +
-                          adhesive_energy(p, state.contact_radius, impact.effective_radius);
+    const double energy =
+        0.5 * impact.effective_mass * speed * speed + adhesive_energy(p, state.contact_radius, impact.effective_radius);
     if (energy < neck_energy) return {kNever, 0.0};
   }
   return {kNever, 0.0};
@@ -141,7 +141,8 @@ double Jkr::bonded_half_period(const Params& p, const HeadOnImpact& pair) {
 }
 
 double Jkr::time_step(const Params& p, const HeadOnImpact& pair, int collision_steps) {
-  return std::min(HertzMindlin::time_step(p.material, pair, collision_steps), bonded_half_period(p, pair) / collision_steps);
+  return std::min(HertzMindlin::time_step(p.material, pair, collision_steps),
+                  bonded_half_period(p, pair) / collision_steps);
 }
 
 double Jkr::sticking_speed(const Params& p, const HeadOnImpact& impact) {
@@ -156,17 +157,21 @@ std::vector<CheckLine> Jkr::describe(const Params& p, const HeadOnImpact& impact
   for (auto& line : lines)
     if (line.label.starts_with("e ")) line.label = "e (no adhesion)";
   const BinaryContact b = binary_contact(p, impact);
-  lines.push_back({"surface energy", fmt::format("{:.6g} J/m^2: pull-off force {:.6g} N, neck breaks at overlap {:.4g} m",
-                                                 p.surface_energy, pull_off_force(p, impact.effective_radius),
-                                                 detach_overlap(p, impact.effective_radius))});
+  lines.push_back(
+      {"surface energy",
+       fmt::format("{:.6g} J/m^2: pull-off force {:.6g} N, neck breaks at overlap {:.4g} m", p.surface_energy,
+                   pull_off_force(p, impact.effective_radius), detach_overlap(p, impact.effective_radius))});
   if (p.surface_energy > 0.0)
-    lines.push_back({"bonded pair", fmt::format("a0 = {:.4g} m, half period of its oscillations {:.6g} s (the time step resolves it too)",
-                                                equilibrium_radius(p, impact.effective_radius), bonded_half_period(p, impact))});
-  lines.push_back({"adhesive impact", std::isinf(b.duration)
-                                          ? fmt::format("sticks at {:.6g} m/s (elastic sticking speed {:.6g} m/s)",
-                                                        impact.speed, sticking_speed(p, impact))
-                                          : fmt::format("e = {:.6g}, {:.6g} s at {:.6g} m/s (elastic sticking speed {:.6g} m/s)",
-                                                        b.restitution, b.duration, impact.speed, sticking_speed(p, impact))});
+    lines.push_back(
+        {"bonded pair",
+         fmt::format("a0 = {:.4g} m, half period of its oscillations {:.6g} s (the time step resolves it too)",
+                     equilibrium_radius(p, impact.effective_radius), bonded_half_period(p, impact))});
+  lines.push_back(
+      {"adhesive impact", std::isinf(b.duration)
+                              ? fmt::format("sticks at {:.6g} m/s (elastic sticking speed {:.6g} m/s)", impact.speed,
+                                            sticking_speed(p, impact))
+                              : fmt::format("e = {:.6g}, {:.6g} s at {:.6g} m/s (elastic sticking speed {:.6g} m/s)",
+                                            b.restitution, b.duration, impact.speed, sticking_speed(p, impact))});
   return lines;
 }
 

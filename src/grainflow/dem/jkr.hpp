@@ -40,7 +40,7 @@ struct Jkr {
   };
 
   struct State {
-    Vec3 tangential_force;      // N, the tangential spring's force on i at the previous step
+    Vec3 tangential_force;        // N, the tangential spring's force on i at the previous step
     double contact_radius = 0.0;  // m, a at the previous step (unloading scales the spring; Newton starts there)
   };
 
@@ -62,7 +62,8 @@ struct Jkr {
       const double g = t_guess * t_guess * t_guess * t_guess - rc * t_guess - r * overlap;
       t = g >= 0.0 ? t_guess : t_guess - g / slope_guess;
     }
-    if (!(t > 0.0) || t > 2.0 * t_guess) {  // no guess, or far off: g(t) >= 0 where t^4 / 2 covers R* c t and R* |delta|
+    if (!(t > 0.0) ||
+        t > 2.0 * t_guess) {  // no guess, or far off: g(t) >= 0 where t^4 / 2 covers R* c t and R* |delta|
       t = std::max(std::cbrt(2.0 * rc), std::sqrt(std::sqrt(2.0 * r * std::fabs(overlap))));
     }
     for (int iteration = 0; iteration < 60; ++iteration) {
@@ -98,8 +99,8 @@ struct Jkr {
     s.contact_radius = a;
     if (m.friction <= 0.0) return out;
     // Mindlin on the JKR patch, the stored force scaled down with a while it shrinks.
-    out.tangential = HertzMindlin::mindlin_tangential(m, s.tangential_force, a, a < previous ? a / previous : 1.0, c, dt,
-                                                      m.friction * sliding_load(p, out.normal, c.effective_radius));
+    out.tangential = HertzMindlin::mindlin_tangential(m, s.tangential_force, a, a < previous ? a / previous : 1.0, c,
+                                                      dt, m.friction * sliding_load(p, out.normal, c.effective_radius));
     return out;
   }
 
@@ -122,8 +123,8 @@ struct Jkr {
   // energy JKR's hysteresis loses.
   static double adhesive_energy(const Params& p, double a, double effective_radius) {
     const double e = p.material.e_star, w = 2.0 * p.surface_energy, r = effective_radius;
-    return 8.0 * e * std::pow(a, 5) / (15.0 * r * r) - (4.0 / 3.0) * std::sqrt(2.0 * M_PI * w * e) * std::pow(a, 3.5) / r +
-           M_PI * w * a * a;
+    return 8.0 * e * std::pow(a, 5) / (15.0 * r * r) -
+           (4.0 / 3.0) * std::sqrt(2.0 * M_PI * w * e) * std::pow(a, 3.5) / r + M_PI * w * a * a;
   }
   // U(a) with the tangential spring's F^2 / (2 S_t).
   static double elastic_energy(const Params& p, const State& s, double overlap, double effective_radius) {

@@ -47,7 +47,8 @@ LinearDashpot::Params LinearDashpot::wall_params(const Params& pair, const Conta
 
 std::optional<ParameterProblem> LinearDashpot::problem(const Params& p, const HeadOnImpact& impact) {
   if (std::isfinite(binary_contact(p, impact).duration)) return std::nullopt;
-  return ParameterProblem{"gamma_n", "the contact is overdamped (gamma_n >= 2 sqrt(kn / m_eff)): spheres would never separate"};
+  return ParameterProblem{"gamma_n",
+                          "the contact is overdamped (gamma_n >= 2 sqrt(kn / m_eff)): spheres would never separate"};
 }
 
 BinaryContact LinearDashpot::binary_contact(const Params& p, const HeadOnImpact& impact) {

@@ -30,7 +30,8 @@ void CellGrid::setup_region(const PeriodicBox& box, const Vec3& lo, const Vec3& 
     // per step (the case checks keep a width of at least half a cutoff: kMaxImage steps).
     reach_[axis] = 1;
     if (wraps_[axis] && cells_[axis] == 1)
-      reach_[axis] = std::clamp(static_cast<int>(std::ceil(cell_size / lengths[axis] - 1e-12)), 1, PeriodicBox::kMaxImage);
+      reach_[axis] =
+          std::clamp(static_cast<int>(std::ceil(cell_size / lengths[axis] - 1e-12)), 1, PeriodicBox::kMaxImage);
   }
   // The sliding rows' search takes four distinct cells along x and three along y (the case checks
   // keep those widths; the guard is for a grid widened to bound its cell count).
@@ -141,10 +142,10 @@ void CellGrid::search(const ParticleStore& p, const PeriodicBox& box, double ski
             if (norm2(d) < cutoff * cutoff) {
               my_partners.push_back(j);
               if constexpr (Framed)  // x_i - x_j at the images = x_i - (x_j + (s + f_j - f_i) L)
-                my_codes.push_back(PeriodicBox::shift_code(sx + frame_[j][0] - frame_[i][0], sy + frame_[j][1] - frame_[i][1],
+                my_codes.push_back(PeriodicBox::shift_code(sx + frame_[j][0] - frame_[i][0],
+                                                           sy + frame_[j][1] - frame_[i][1],
                                                            sz + frame_[j][2] - frame_[i][2]));
-              else
-                my_codes.push_back(code);
+              else my_codes.push_back(code);
             }
           }
         }
@@ -154,8 +155,8 @@ void CellGrid::search(const ParticleStore& p, const PeriodicBox& box, double ski
   }
 }
 
-void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, double skin, int threads,
-                           NeighborPairs& out, std::size_t expected_pairs) const {
+void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, double skin, int threads, NeighborPairs& out,
+                           std::size_t expected_pairs) const {
   const std::size_t n = p.size();
   threads = std::max(1, threads);
   std::vector<std::vector<std::uint32_t>> partners(threads), counts(threads);

@@ -46,8 +46,8 @@ class CellGrid {
   const std::vector<std::uint32_t>& cell_order() const { return order_; }
   // `expected_pairs` (the last list's length, or 0) sizes the per-thread buffers up front, so that
   // their growth by doubling does not set the peak memory.
-  void build_pairs(const ParticleStore& particles, const PeriodicBox& box, double skin, int threads,
-                   NeighborPairs& out, std::size_t expected_pairs = 0) const;
+  void build_pairs(const ParticleStore& particles, const PeriodicBox& box, double skin, int threads, NeighborPairs& out,
+                   std::size_t expected_pairs = 0) const;
 
  private:
   int cell_of(const Vec3& x) const;
@@ -59,12 +59,12 @@ class CellGrid {
               std::vector<std::uint32_t>& partners, std::vector<std::uint8_t>& codes,
               std::vector<std::uint32_t>& counts) const;
   PeriodicBox box_;
-  Vec3 lo_;                               // the grid's origin (the box's, or the region's)
-  std::array<bool, 3> wraps_{};           // periodic and not cut: neighbour cells wrap around
-  std::array<bool, 3> framed_{};          // periodic and cut: particles binned at an image
+  Vec3 lo_;                                        // the grid's origin (the box's, or the region's)
+  std::array<bool, 3> wraps_{};                    // periodic and not cut: neighbour cells wrap around
+  std::array<bool, 3> framed_{};                   // periodic and cut: particles binned at an image
   std::vector<std::array<std::int8_t, 3>> frame_;  // each particle's image along the framed axes
   std::array<int, 3> cells_{1, 1, 1};
-  std::array<int, 3> reach_{1, 1, 1};     // neighbour cells searched each way: images along a one-cell axis
+  std::array<int, 3> reach_{1, 1, 1};  // neighbour cells searched each way: images along a one-cell axis
   Vec3 inv_size_;
   std::vector<std::uint32_t> start_;  // CSR over cells
   std::vector<std::uint32_t> order_;  // particle indices sorted by cell

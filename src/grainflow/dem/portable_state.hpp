@@ -40,9 +40,9 @@ struct PortableContacts {
     std::uint32_t id, wall;
     State state;
   };
-  std::vector<Pair> pairs;          // touching pairs
-  std::vector<WallContact> walls;   // touching particle-wall contacts
-  Statistics stats{};               // contacts begun summed over ranks
+  std::vector<Pair> pairs;         // touching pairs
+  std::vector<WallContact> walls;  // touching particle-wall contacts
+  Statistics stats{};              // contacts begun summed over ranks
   long rebuilds_since_sort = 0;
 
   template <class Archive>

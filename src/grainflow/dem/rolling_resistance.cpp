@@ -24,15 +24,17 @@ std::vector<CheckLine> describe_rolling(const RollingParams& p, double mass, dou
     return lines;
   }
   if (p.model == RollingModel::constant_torque) {
-    lines.push_back({"rolling resistance", fmt::format("constant_torque, mu_r = {:.6g}: -mu_r R* F_n along the rolling", p.friction)});
+    lines.push_back({"rolling resistance",
+                     fmt::format("constant_torque, mu_r = {:.6g}: -mu_r R* F_n along the rolling", p.friction)});
     return lines;
   }
-  lines.push_back({"rolling resistance",
-                   fmt::format("epsd, mu_r = {:.6g}: spring capped at mu_r R* F_n, dashpot eta_r = {:.3g}", p.friction, p.damping)});
+  lines.push_back(
+      {"rolling resistance", fmt::format("epsd, mu_r = {:.6g}: spring capped at mu_r R* F_n, dashpot eta_r = {:.3g}",
+                                         p.friction, p.damping)});
   const double stiffness = p.stiffness_per_radius2 * radius * radius;
   const double period = 2.0 * M_PI * std::sqrt(1.4 * mass * radius * radius / stiffness);
-  lines.push_back({"rolling spring (on a wall)", fmt::format("k_r = {:.6g} N m/rad, period {:.6g} s = {:.4g} steps", stiffness,
-                                                             period, period / time_step)});
+  lines.push_back({"rolling spring (on a wall)", fmt::format("k_r = {:.6g} N m/rad, period {:.6g} s = {:.4g} steps",
+                                                             stiffness, period, period / time_step)});
   return lines;
 }
 

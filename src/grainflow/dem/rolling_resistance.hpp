@@ -37,8 +37,8 @@ using RollingModel = grainflow::RollingModel;
 
 struct RollingParams {
   RollingModel model = RollingModel::epsd;
-  double friction = 0.0;             // mu_r, dimensionless: the torque's cap is mu_r R* F_n
-  double damping = 0.0;              // eta_r, epsd: fraction of the dashpot's critical value
+  double friction = 0.0;               // mu_r, dimensionless: the torque's cap is mu_r R* F_n
+  double damping = 0.0;                // eta_r, epsd: fraction of the dashpot's critical value
   double stiffness_per_radius2 = 0.0;  // N/m, epsd: k_r / R*^2 = c_k k_n mu_r^2
 };
 
@@ -57,11 +57,11 @@ struct RollingState {
 
 // What the rolling model reads of one contact at one instant.
 struct RollingKinematics {
-  Vec3 normal;                 // unit, from the partner towards i
-  Vec3 relative_spin;          // rad/s, omega_i - omega_j (omega_i against a wall)
-  double effective_radius = 0.0;   // m, R*
-  double rolling_inertia = 0.0;    // kg m^2, I_r (epsd's dashpot only)
-  double normal_force = 0.0;   // N, the contact law's normal force (a pull is no load)
+  Vec3 normal;                    // unit, from the partner towards i
+  Vec3 relative_spin;             // rad/s, omega_i - omega_j (omega_i against a wall)
+  double effective_radius = 0.0;  // m, R*
+  double rolling_inertia = 0.0;   // kg m^2, I_r (epsd's dashpot only)
+  double normal_force = 0.0;      // N, the contact law's normal force (a pull is no load)
 };
 
 struct RollingResistance {

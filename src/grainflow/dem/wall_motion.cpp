@@ -12,8 +12,9 @@ double drive_displacement(double amplitude, double omega, double phase, double r
   if (ramp <= 0.0) return amplitude * (std::sin(omega * tau + phase) - std::sin(phase));
   const double in_ramp = std::min(tau, ramp);
   // d/du [u sin(wu+phi) + cos(wu+phi)/w] = u w cos(wu+phi)
-  double x = amplitude / ramp *
-             (in_ramp * std::sin(omega * in_ramp + phase) + (std::cos(omega * in_ramp + phase) - std::cos(phase)) / omega);
+  double x =
+      amplitude / ramp *
+      (in_ramp * std::sin(omega * in_ramp + phase) + (std::cos(omega * in_ramp + phase) - std::cos(phase)) / omega);
   if (tau > ramp) x += amplitude * (std::sin(omega * tau + phase) - std::sin(omega * ramp + phase));
   return x;
 }

@@ -63,9 +63,7 @@ struct WaltonBraun {
   static std::vector<CheckLine> describe(const Params& p, const HeadOnImpact& impact);
 
   // Residual overlap alpha0 at which the unloading line K2 reaches zero force.
-  static double residual_overlap(const Params& p, const State& s) {
-    return s.alpha_max * (1.0 - p.k1 / p.k2);
-  }
+  static double residual_overlap(const Params& p, const State& s) { return s.alpha_max * (1.0 - p.k1 / p.k2); }
 
   // What the springs give back: unloading on K2 from here to alpha0, 1/2 K2 (alpha - alpha0)^2 (the
   // rest of the loading work, 1 - e^2 of it, is lost), and the tangential force's F^2 / (2 K0), its
@@ -93,8 +91,7 @@ struct WaltonBraun {
   }
 
  private:
-  static Vec3 tangential(const Params& p, State& s, const ContactKinematics& c, double normal_force,
-                         double dt) {
+  static Vec3 tangential(const Params& p, State& s, const ContactKinematics& c, double normal_force, double dt) {
     const double limit = p.friction * normal_force;  // mu N
     // Old force rotated into the current tangent plane (eq. 2-4-16).
     Vec3 old_force = s.tangential_force - dot(s.tangential_force, c.normal) * c.normal;
@@ -118,7 +115,7 @@ struct WaltonBraun {
     // The force along `direction` grows when the slip opposes it (loading), shrinks otherwise.
     const bool unloading = along > 0.0;
     const double magnitude = std::min(old_magnitude, limit);  // T
-    if (unloading != s.unloading) {  // slip reversed: T* takes the current T
+    if (unloading != s.unloading) {                           // slip reversed: T* takes the current T
       s.t_star = magnitude;
       s.unloading = unloading;
     }

@@ -38,11 +38,11 @@ class CellGrid {
     cell_.assign(particles, 0);
   }
 
-  int count(int axis) const { return cells_[axis]; }      // cells along an axis
+  int count(int axis) const { return cells_[axis]; }         // cells along an axis
   double width(int axis) const { return cell_size_[axis]; }  // m
-  std::size_t size() const { return head_.size(); }       // cells in all
-  int head(int cell) const { return head_[cell]; }        // first particle in a cell, -1 when empty
-  int cell(int i) const { return cell_[i]; }               // the cell particle i is filed in
+  std::size_t size() const { return head_.size(); }          // cells in all
+  int head(int cell) const { return head_[cell]; }           // first particle in a cell, -1 when empty
+  int cell(int i) const { return cell_[i]; }                 // the cell particle i is filed in
 
   int index(int cx, int cy, int cz) const { return cx + cells_[0] * (cy + cells_[1] * cz); }
   std::array<int, 3> coordinates(int cell) const {
@@ -72,9 +72,9 @@ class CellGrid {
   // Couette cell whose width follows its gap), and across a Lees–Edwards boundary (at time `now`)
   // a whole sliding row is visited, with `x_images` set. Inlined into the engine's prediction.
   template <class Nodes, class Visit>
-  [[gnu::always_inline]] void for_each_cell_around(const PeriodicBox& box, const std::array<int, 3>& c, const Nodes& nodes,
-                                                   const LeesEdwardsImages& images, double now, double width_rate,
-                                                   Visit&& visit) const {
+  [[gnu::always_inline]] void for_each_cell_around(const PeriodicBox& box, const std::array<int, 3>& c,
+                                                   const Nodes& nodes, const LeesEdwardsImages& images, double now,
+                                                   double width_rate, Visit&& visit) const {
     // The neighboring cells are listed first and the first particle of each fetched ahead, so the
     // memory reads for all of them overlap instead of following one another.
     struct Around {
@@ -176,8 +176,8 @@ class CellGrid {
   }
 
   std::array<int, 3> cells_{1, 1, 1};
-  Vec3 cell_size_;         // m
-  std::vector<int> head_;  // per cell
+  Vec3 cell_size_;                // m
+  std::vector<int> head_;         // per cell
   std::vector<int> prev_, cell_;  // per particle
 };
 

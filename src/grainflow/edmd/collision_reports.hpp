@@ -16,19 +16,19 @@ namespace grainflow::edmd {
 
 // A particle just after a collision.
 struct Collided {
-  Vec3 x;                   // m, centre (for a pair's j: of the image i met)
-  Vec3 velocity;            // m/s (for a pair's j: of the image i met)
-  Vec3 angular_velocity;    // rad/s
-  double radius = 0.0;      // m
-  double inv_mass = 0.0;    // 1/kg
-  double inv_inertia = 0.0; // 1/(kg m^2)
+  Vec3 x;                    // m, centre (for a pair's j: of the image i met)
+  Vec3 velocity;             // m/s (for a pair's j: of the image i met)
+  Vec3 angular_velocity;     // rad/s
+  double radius = 0.0;       // m
+  double inv_mass = 0.0;     // 1/kg
+  double inv_inertia = 0.0;  // 1/(kg m^2)
 };
 
 // i and the image of j it met, separated by dr = x_i - x_j, after receiving J and -J:
 // v_i' = v_i + J/m_i and v_j' = v_j - J/m_j give the relative velocity before.
 inline engine_api::PairCollision pair_collision_report(double time, std::uint32_t i, std::uint32_t j, const Collided& a,
-                                                    const Collided& b, const Vec3& dr, const Vec3& impulse,
-                                                    double dissipated) {
+                                                       const Collided& b, const Vec3& dr, const Vec3& impulse,
+                                                       double dissipated) {
   const Vec3 normal = dr * (1.0 / norm(dr));
   engine_api::PairCollision c;
   c.time = time;
@@ -48,8 +48,8 @@ inline engine_api::PairCollision pair_collision_report(double time, std::uint32_
 // collision): v' = v + J/m, and on a rough wall omega' = omega - (R/I) n x J; smooth and no-slip
 // collisions leave the spin.
 inline engine_api::WallCollision wall_collision_report(double time, std::uint32_t i, int w, const EdmdWall& wall,
-                                                    const Collided& a, const Vec3& normal, const Vec3& impulse,
-                                                    WallCondition condition, double dissipated) {
+                                                       const Collided& a, const Vec3& normal, const Vec3& impulse,
+                                                       WallCondition condition, double dissipated) {
   Vec3 spin = a.angular_velocity;
   if (condition == WallCondition::rough) spin += (a.radius * a.inv_inertia) * cross(normal, impulse);
   const Vec3 relative = a.velocity - a.inv_mass * impulse - wall.velocity;

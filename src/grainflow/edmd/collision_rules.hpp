@@ -46,8 +46,8 @@ inline Vec3 collide_pair(PairBody i, PairBody j, const Vec3& normal, const Resti
   const double e = law(-vn);
   const double normal_mass = 1.0 / (i.inv_mass + j.inv_mass);
   // Effective mass for a tangential impulse at the contact point (translation + rotation of both).
-  const double tangential_inv_mass = i.inv_mass + j.inv_mass + i.radius * i.radius * i.inv_inertia +
-                                     j.radius * j.radius * j.inv_inertia;
+  const double tangential_inv_mass =
+      i.inv_mass + j.inv_mass + i.radius * i.radius * i.inv_inertia + j.radius * j.radius * j.inv_inertia;
   Vec3 impulse = (-(1.0 + e) * normal_mass * vn) * normal;
   if (tangential_restitution > -1.0) {
     const Vec3 tangential = (-(1.0 + tangential_restitution) / tangential_inv_mass) * slip;

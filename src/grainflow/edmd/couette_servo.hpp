@@ -54,7 +54,8 @@ class CouetteServo {
   // After every servo.every_collisions collisions, once the gap has changed by servo.gap_change, or
   // at the first event once servo.interval has passed.
   bool due(const EdmdState& s, long long collisions) const {
-    return collisions - collisions_ >= s.servo.every_collisions || std::fabs(gap_at(s, s.time) - gap_) >= s.servo.gap_change ||
+    return collisions - collisions_ >= s.servo.every_collisions ||
+           std::fabs(gap_at(s, s.time) - gap_) >= s.servo.gap_change ||
            (s.servo.interval > 0.0 && s.time - since_ >= s.servo.interval);
   }
 
@@ -117,11 +118,11 @@ class CouetteServo {
   static CouetteServoRule rule(const EdmdState& s) { return {s.servo, s.speed_unit, s.stress_unit}; }
 
   double width_ref_ = 0.0, width_rate_ = 0.0, width_since_ = 0.0;  // the periodic width L(t)
-  std::vector<double> wall_normal_impulse_;  // kg m/s into each wall since the last update
+  std::vector<double> wall_normal_impulse_;                        // kg m/s into each wall since the last update
   int bottom_wall_ = -1, top_wall_ = -1;
-  double aspect_ = 0.0, shear_rate_ = 0.0;   // at the start: width / gap, U_T / H
-  double since_ = 0.0, gap_ = 0.0;           // the last update's time and gap
-  long long collisions_ = 0;                 // particle collisions at the last update
+  double aspect_ = 0.0, shear_rate_ = 0.0;             // at the start: width / gap, U_T / H
+  double since_ = 0.0, gap_ = 0.0;                     // the last update's time and gap
+  long long collisions_ = 0;                           // particle collisions at the last update
   double stress_ = 0.0, speed_ = 0.0, new_gap_ = 0.0;  // the update under way
   ServoState state_;
 };

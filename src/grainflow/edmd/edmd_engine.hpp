@@ -132,9 +132,9 @@ class EdmdEngine {
   enum class Kind : std::uint8_t { none, pair, wall, cell, expiry };
   struct Event {
     Kind kind = Kind::none;
-    std::int8_t detail = 0;          // wall index, or cell face (axis * 2 + side)
+    std::int8_t detail = 0;  // wall index, or cell face (axis * 2 + side)
     std::uint32_t partner = 0;
-    std::uint32_t partner_count = 0; // partner's trajectory counter when predicted
+    std::uint32_t partner_count = 0;  // partner's trajectory counter when predicted
   };
 
   // Every particle's flight from the particle store, current now, none rolling.
@@ -416,12 +416,14 @@ class EdmdEngine {
     const Vec3 frame = image_velocity(i, j);
     flight_[j].v += frame;
     const double before = kinetic_energy(i) + kinetic_energy(j);
-    const Vec3 impulse = collide_pair({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
-                                      {flight_[j].v, p.angular_velocity[j], p.radius[j], p.inv_mass[j], p.inv_inertia[j]},
-                                      normal, recent ? tc_.elastic() : s_.restitution, recent ? -1.0 : s_.tangential_restitution);
+    const Vec3 impulse =
+        collide_pair({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
+                     {flight_[j].v, p.angular_velocity[j], p.radius[j], p.inv_mass[j], p.inv_inertia[j]}, normal,
+                     recent ? tc_.elastic() : s_.restitution, recent ? -1.0 : s_.tangential_restitution);
     const double lost = before - kinetic_energy(i) - kinetic_energy(j);
     flight_[j].v -= frame;
-    if (s_.separation_gap > 0.0) [[unlikely]] separate(i, j, dr, normal);
+    if (s_.separation_gap > 0.0) [[unlikely]]
+      separate(i, j, dr, normal);
     tc_.note_collision(i, s_.time);
     tc_.note_collision(j, s_.time);
     counters_.virial += dot(dr, impulse);
@@ -430,7 +432,8 @@ class EdmdEngine {
     ++flight_[i].count;
     ++flight_[j].count;
     ++counters_.collisions;
-    if (observer_ != nullptr) [[unlikely]] report_pair(i, j, impulse, lost);
+    if (observer_ != nullptr) [[unlikely]]
+      report_pair(i, j, impulse, lost);
   }
 
   // Out of line, so that collide() stays as lean as without an observer: what the collision left
@@ -458,8 +461,9 @@ class EdmdEngine {
     const bool recent = tc_.recent(i, s_.time);
     counters_.tc_wall_collisions += recent;
     const WallCondition condition = recent ? WallCondition::smooth : wall.condition;
-    const Vec3 impulse = collide_wall({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]},
-                                      normal, wall.velocity, recent ? tc_.elastic() : wall.restitution, condition);
+    const Vec3 impulse =
+        collide_wall({flight_[i].v, p.angular_velocity[i], p.radius[i], p.inv_mass[i], p.inv_inertia[i]}, normal,
+                     wall.velocity, recent ? tc_.elastic() : wall.restitution, condition);
     servo_.add_normal_impulse(w, dot(impulse, normal));
     if (s_.separation_gap > 0.0) [[unlikely]] {  // Campbell: 1.00001 R from the wall
       const double gap = wall.inward * (flight_[i].x[wall.axis] - wall.at(s_.time));
@@ -472,7 +476,8 @@ class EdmdEngine {
     counters_.wall_work += dot(wall.velocity, impulse);
     ++flight_[i].count;
     ++counters_.wall_collisions;
-    if (observer_ != nullptr) [[unlikely]] report_wall(i, w, normal, impulse, condition, lost);
+    if (observer_ != nullptr) [[unlikely]]
+      report_wall(i, w, normal, impulse, condition, lost);
     start_rolling_if_slow(i, w);
   }
 
@@ -574,9 +579,9 @@ class EdmdEngine {
   double uniform_radius_ = 0.0;  // m, the radius of every particle, or 0 when sizes differ
   StallDetector stall_;
   LeesEdwardsImages images_;
-  CouetteServo servo_;  // the Couette cell's walls and width (also the width law without [servo])
+  CouetteServo servo_;          // the Couette cell's walls and width (also the width law without [servo])
   std::vector<Flight> flight_;  // flight.hpp
-  bool use_lists_ = false;  // the neighbour-list path is in use
+  bool use_lists_ = false;      // the neighbour-list path is in use
   NeighborLists<Dim> lists_;
   RollingWalls rolling_;
   std::vector<Event> event_;

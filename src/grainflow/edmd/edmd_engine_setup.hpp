@@ -12,8 +12,8 @@ namespace grainflow::edmd {
 template <int Dim>
 inline engine_api::EnergyBudget EdmdEngine<Dim>::energy_budget() const {
   engine_api::EnergyBudget b;
-  b.gravity_work = counters_.start_periodic_potential - engine_api::periodic_potential(s_.particles, s_.box, s_.gravity) +
-                   counters_.gravity_shift_work;
+  b.gravity_work = counters_.start_periodic_potential -
+                   engine_api::periodic_potential(s_.particles, s_.box, s_.gravity) + counters_.gravity_shift_work;
   b.wall_work = counters_.wall_work;
   b.boundary_work = counters_.boundary_work;
   b.separation_work = counters_.separation_work;

@@ -23,21 +23,22 @@ struct EdmdWall : FaceWall {
 
 struct EdmdState {
   int dimension = 3;
-  ParticleStore particles;      // positions and velocities valid at `time` after a synchronize
+  ParticleStore particles;  // positions and velocities valid at `time` after a synchronize
   PeriodicBox box;
-  Vec3 gravity;                 // m/s^2
-  double time = 0.0;            // s
+  Vec3 gravity;       // m/s^2
+  double time = 0.0;  // s
   std::vector<EdmdWall> walls;
-  RestitutionLaw restitution;   // particle-particle
+  RestitutionLaw restitution;  // particle-particle
   double tangential_restitution = -1.0;
-  double rolling_speed = 0.0;     // m/s, wall rebounds slower than this roll (Campbell section 2.14.2)
-  double contact_duration = 0.0;  // s, TC model (Luding & McNamara): elastic within this time of a particle's last collision
-  double separation_gap = 0.0;    // Campbell's re-separation after each collision, relative to the contact distance
+  double rolling_speed = 0.0;  // m/s, wall rebounds slower than this roll (Campbell section 2.14.2)
+  double contact_duration =
+      0.0;  // s, TC model (Luding & McNamara): elastic within this time of a particle's last collision
+  double separation_gap = 0.0;  // Campbell's re-separation after each collision, relative to the contact distance
   std::vector<SpeciesConfig> species;
-  ServoConfig servo;              // pressure-controlled Couette walls, when enabled
-  double lees_edwards_rate = 0.0; // 1/s, shear rate of Lees–Edwards boundaries (flow x, gradient y)
-  double stress_unit = 1.0;       // m U_T^2 / R^2 (2D) or / R^3 (3D): Campbell's stress scale for the servo
-  double speed_unit = 1.0;        // m/s, U_T at the start
+  ServoConfig servo;               // pressure-controlled Couette walls, when enabled
+  double lees_edwards_rate = 0.0;  // 1/s, shear rate of Lees–Edwards boundaries (flow x, gradient y)
+  double stress_unit = 1.0;        // m U_T^2 / R^2 (2D) or / R^3 (3D): Campbell's stress scale for the servo
+  double speed_unit = 1.0;         // m/s, U_T at the start
 };
 
 EdmdState build_edmd_state(const CaseConfig& c);

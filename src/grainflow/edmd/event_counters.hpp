@@ -6,8 +6,8 @@
 namespace grainflow::edmd {
 
 struct EventCounters {
-  long long events = 0;          // every processed event, stale ones included
-  long long collisions = 0;      // particle-particle
+  long long events = 0;      // every processed event, stale ones included
+  long long collisions = 0;  // particle-particle
   long long wall_collisions = 0;
   long long cell_crossings = 0;
   long long stale = 0;           // events found invalid and re-predicted
@@ -22,11 +22,11 @@ struct EventCounters {
   double wall_work = 0.0;
   double boundary_work = 0.0;
   double gravity_shift_work = 0.0;
-  double separation_work = 0.0;          // J, potential energy the re-separation shifts gave
-  double start_energy = 0.0;             // J, kinetic + rotational + bounded potential
-  double start_periodic_potential = 0.0; // J
-  long long servo_updates = 0;   // pressure-servo wall speed changes
-  long long tc_collisions = 0;   // particle-particle collisions the TC model made elastic and smooth
+  double separation_work = 0.0;           // J, potential energy the re-separation shifts gave
+  double start_energy = 0.0;              // J, kinetic + rotational + bounded potential
+  double start_periodic_potential = 0.0;  // J
+  long long servo_updates = 0;            // pressure-servo wall speed changes
+  long long tc_collisions = 0;            // particle-particle collisions the TC model made elastic and smooth
   long long tc_wall_collisions = 0;
 };
 

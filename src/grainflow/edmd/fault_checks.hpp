@@ -35,9 +35,9 @@ inline bool finite(const Vec3& v) { return std::isfinite(v.x) && std::isfinite(v
 struct Stall {
   double time = 0.0, moved = 0.0;
   long long events = 0;
-  std::uint32_t i = 0;        // particle id of the last event
-  long long j = -1;           // partner's id, or -1
-  int wall_face = -1;         // face of the wall hit, or -1
+  std::uint32_t i = 0;                   // particle id of the last event
+  long long j = -1;                      // partner's id, or -1
+  int wall_face = -1;                    // face of the wall hit, or -1
   std::vector<std::uint32_t> colliders;  // ids of the particles that collided in the window (at most 8)
   std::size_t collider_count = 0;
 };
@@ -45,24 +45,26 @@ struct Stall {
 inline std::string stall_message(const Stall& s, const EdmdState& state) {
   using fault_detail::format;
   std::string text = "simulated time stopped advancing at t = " + format("%.17g", s.time) + " s: the last " +
-                     std::to_string(s.events) + " events moved it by " + format("%.3g", s.moved) + " s; the last event ";
-  if (s.j >= 0)
-    text += "was a collision between particles " + std::to_string(s.i) + " and " + std::to_string(s.j);
+                     std::to_string(s.events) + " events moved it by " + format("%.3g", s.moved) +
+                     " s; the last event ";
+  if (s.j >= 0) text += "was a collision between particles " + std::to_string(s.i) + " and " + std::to_string(s.j);
   else if (s.wall_face >= 0)
     text += "was particle " + std::to_string(s.i) + " hitting the " + kFaceNames[s.wall_face] + " wall";
-  else
-    text += "involved particle " + std::to_string(s.i);
+  else text += "involved particle " + std::to_string(s.i);
   if (s.collider_count > 0) {
     text += "; " + std::to_string(s.collider_count) + " particle(s) collided within those events (";
     for (std::size_t k = 0; k < s.colliders.size(); ++k) text += (k ? ", " : "") + std::to_string(s.colliders[k]);
     if (s.collider_count > s.colliders.size()) text += ", ...";
     text += ")";
   }
-  text += "; likely cause: inelastic collapse (or ever faster bounces on a wall, or a resting contact): use the TC model, "
-          "collision.contact_duration (now " + format("%.4g", state.contact_duration) +
-          " s), or a velocity-dependent restitution, collision.restitution_law = \"campbell\" or collision.elastic_speed "
-          "(now " + format("%.4g", state.restitution.elastic_speed) + " m/s), and under gravity collision.rolling_speed (now " +
-          format("%.4g", state.rolling_speed) + " m/s)";
+  text +=
+      "; likely cause: inelastic collapse (or ever faster bounces on a wall, or a resting contact): use the TC model, "
+      "collision.contact_duration (now " +
+      format("%.4g", state.contact_duration) +
+      " s), or a velocity-dependent restitution, collision.restitution_law = \"campbell\" or collision.elastic_speed "
+      "(now " +
+      format("%.4g", state.restitution.elastic_speed) + " m/s), and under gravity collision.rolling_speed (now " +
+      format("%.4g", state.rolling_speed) + " m/s)";
   return text;
 }
 
@@ -87,8 +89,8 @@ inline void check_faults(const EdmdState& s) {
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double gap = wall.inward * (p.position[i][wall.axis] - plane);
       if (gap < -2.0 * p.radius[i])
-        throw RunError(describe_particle(s, i) + " went through the " + kFaceNames[wall.face] + " wall at t = " +
-                       format("%.9g", s.time) + " s: its centre lies " + format("%.4g", -gap) +
+        throw RunError(describe_particle(s, i) + " went through the " + kFaceNames[wall.face] +
+                       " wall at t = " + format("%.9g", s.time) + " s: its centre lies " + format("%.4g", -gap) +
                        " m beyond the wall (more than a diameter); likely cause: a missed wall event, from round-off "
                        "in a grazing or resting contact (set collision.rolling_speed) or a wall moving faster than the "
                        "particles can be predicted against");

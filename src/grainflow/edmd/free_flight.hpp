@@ -36,7 +36,8 @@ inline bool approaching(const Vec3& dr, const Vec3& dv, double speed_floor = 0.0
 // is at most -2b) is already beyond it, with a 1e-9 margin so no earlier root is dropped by
 // rounding. The speed floor, which costs a square root, is evaluated only for a touching pair.
 template <class SpeedFloor>
-inline double contact_time_before(const Vec3& dr, const Vec3& dv, double sigma, double horizon, SpeedFloor&& speed_floor) {
+inline double contact_time_before(const Vec3& dr, const Vec3& dv, double sigma, double horizon,
+                                  SpeedFloor&& speed_floor) {
   const double b = dot(dr, dv);
   if (b >= 0.0) return kNever;  // moving apart (or tangent)
   const double c = norm2(dr) - sigma * sigma;

@@ -47,7 +47,7 @@ void place_lattice(const CaseConfig& c, EdmdState& s, std::mt19937_64& rng) {
   for (const auto& sp : c.species) max_diameter = std::max(max_diameter, sp.diameter);
   const bool fcc = c.particles.lattice == "fcc";
   const double nearest = c.particles.lattice_spacing * max_diameter;  // nearest-neighbor distance
-  const double spacing = fcc ? nearest * std::sqrt(2.0) : nearest;  // cubic cell edge
+  const double spacing = fcc ? nearest * std::sqrt(2.0) : nearest;    // cubic cell edge
   int n[3] = {1, 1, 1};
   for (int a = 0; a < dim; ++a) n[a] = static_cast<int>(std::floor((hi[a] - lo[a]) / spacing));
   const auto sequence = species_sequence(c, rng);
@@ -61,7 +61,8 @@ void place_lattice(const CaseConfig& c, EdmdState& s, std::mt19937_64& rng) {
         for (int i = 0; i < n[0]; ++i)
           for (const auto& b : basis) {
             if (placed >= sequence.size()) return;
-            Vec3 x{lo.x + (i + b[0] + 0.25) * spacing, lo.y + (j + b[1] + 0.25) * spacing, lo.z + (k + b[2] + 0.25) * spacing};
+            Vec3 x{lo.x + (i + b[0] + 0.25) * spacing, lo.y + (j + b[1] + 0.25) * spacing,
+                   lo.z + (k + b[2] + 0.25) * spacing};
             for (int a = 0; a < 3; ++a) x[a] += jitter * unit(rng);
             const int sp = sequence[placed++];
             add_particle(s, c, sp, c.species[sp].diameter, x);
@@ -137,7 +138,8 @@ void place_random(const CaseConfig& c, EdmdState& s, std::mt19937_64& rng) {
       buckets[b[0] + n[0] * (b[1] + n[1] * b[2])].push_back(static_cast<std::uint32_t>(s.particles.size() - 1));
       placed = true;
     }
-    if (!placed) throw InputError(c.path, "species.count", "random placement found no free spot; use init = \"lattice\"");
+    if (!placed)
+      throw InputError(c.path, "species.count", "random placement found no free spot; use init = \"lattice\"");
   }
 }
 

@@ -49,7 +49,8 @@ class NeighborLists {
     for (int a = 0; a < Dim; ++a) volume *= box.length(a);
     const double n = static_cast<double>(particles) / volume;
     const double d = max_diameter;
-    const double free_path = Dim == 3 ? 1.0 / (std::sqrt(2.0) * std::numbers::pi * n * d * d) : 1.0 / (2.0 * std::sqrt(2.0) * n * d);
+    const double free_path =
+        Dim == 3 ? 1.0 / (std::sqrt(2.0) * std::numbers::pi * n * d * d) : 1.0 / (2.0 * std::sqrt(2.0) * n * d);
     return std::clamp(0.2 + 0.5 * free_path / d, 0.2, 0.6);
   }
 
@@ -155,8 +156,8 @@ class NeighborLists {
   // second solves the few kept exactly. Inlined into the engine's prediction.
   static constexpr std::uint32_t kNone = ~0u;
   template <class Nodes>
-  [[gnu::always_inline]] std::uint32_t first_contact(std::uint32_t i, const Nodes& nodes, const Vec3& xi, const Vec3& vi,
-                                                     double now, double& best) {
+  [[gnu::always_inline]] std::uint32_t first_contact(std::uint32_t i, const Nodes& nodes, const Vec3& xi,
+                                                     const Vec3& vi, double now, double& best) {
     const std::uint32_t* list = list_of(i) + 1;
     const std::uint32_t count = list[-1];
     const bool inside = inside_[i] != 0;
@@ -242,15 +243,17 @@ class NeighborLists {
           const std::uint32_t count = slot_count_[cell];
           if (uniform_radius_ > 0.0) {
 #if defined(__AVX__)
-            const __m256 fx = _mm256_set1_ps(static_cast<float>(from.x)), fy = _mm256_set1_ps(static_cast<float>(from.y)),
+            const __m256 fx = _mm256_set1_ps(static_cast<float>(from.x)),
+                         fy = _mm256_set1_ps(static_cast<float>(from.y)),
                          fz = _mm256_set1_ps(static_cast<float>(from.z)), r2 = _mm256_set1_ps(reach2);
             for (std::uint32_t k = 0; k < count; k += 8) {
               const __m256 ex = _mm256_sub_ps(fx, _mm256_loadu_ps(x + k));
               const __m256 ey = _mm256_sub_ps(fy, _mm256_loadu_ps(x + cap + k));
               const __m256 ez = _mm256_sub_ps(fz, _mm256_loadu_ps(x + 2 * cap + k));
-              const __m256 d2 = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ex, ex), _mm256_mul_ps(ey, ey)), _mm256_mul_ps(ez, ez));
-              for (unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d2, r2, _CMP_LT_OQ))); bits != 0;
-                   bits &= bits - 1) {
+              const __m256 d2 =
+                  _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(ex, ex), _mm256_mul_ps(ey, ey)), _mm256_mul_ps(ez, ez));
+              for (unsigned bits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(d2, r2, _CMP_LT_OQ)));
+                   bits != 0; bits &= bits - 1) {
                 const std::uint32_t j = id[k + static_cast<std::uint32_t>(__builtin_ctz(bits))];
                 if (j != i) found(j);
               }
@@ -258,7 +261,8 @@ class NeighborLists {
 #else
             std::uint32_t* near = found_.data();  // without branches on the (random) outcome
             std::uint32_t m = 0;
-            const float gx = static_cast<float>(from.x), gy = static_cast<float>(from.y), gz = static_cast<float>(from.z);
+            const float gx = static_cast<float>(from.x), gy = static_cast<float>(from.y),
+                        gz = static_cast<float>(from.z);
             for (std::uint32_t k = 0; k < count; ++k) {
               const float ex = gx - x[k], ey = gy - x[cap + k], ez = gz - x[2 * cap + k];
               near[m] = id[k];
@@ -362,7 +366,8 @@ class NeighborLists {
     unsigned skip = 1;  // the length word
     for (std::uint32_t base = 0;; base += 8, skip = 0) {
       const __m256i words = _mm256_load_si256(reinterpret_cast<const __m256i*>(list + base));
-      const unsigned hits = static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(words, key)))) & ~skip;
+      const unsigned hits =
+          static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(words, key)))) & ~skip;
       if (hits != 0) return base + static_cast<std::uint32_t>(__builtin_ctz(hits));
     }
 #else
@@ -378,22 +383,22 @@ class NeighborLists {
     LineAllocator() = default;
     template <class U>
     LineAllocator(const LineAllocator<U>&) {}
-    T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{64})); }
-    void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t{64}); }
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{64})); }
+    void deallocate(T* p, std::size_t) { ::operator delete (p, std::align_val_t{64}); }
     bool operator==(const LineAllocator&) const { return true; }
   };
   using AlignedWords = std::vector<std::uint32_t, LineAllocator<std::uint32_t>>;
 
-  double max_diameter_ = 0.0;            // m
-  double uniform_radius_ = 0.0;          // m, the radius of every particle, or 0 when sizes differ
-  double shell_ = 0.0;                   // m, how far a particle moves from its list centre before a rebuild
-  Vec3 period_, inv_period_;             // box lengths along periodic axes (0 elsewhere) and inverses
-  std::vector<Vec3> center_;             // list centres
-  std::vector<std::uint8_t> inside_;     // far_from_faces() at the last rebuild
-  std::vector<std::uint32_t> kept_;      // first_contact()'s scratch: the neighbours worth solving for
-  AlignedWords list_;                    // list_cap_ words per particle: count, then neighbours
+  double max_diameter_ = 0.0;         // m
+  double uniform_radius_ = 0.0;       // m, the radius of every particle, or 0 when sizes differ
+  double shell_ = 0.0;                // m, how far a particle moves from its list centre before a rebuild
+  Vec3 period_, inv_period_;          // box lengths along periodic axes (0 elsewhere) and inverses
+  std::vector<Vec3> center_;          // list centres
+  std::vector<std::uint8_t> inside_;  // far_from_faces() at the last rebuild
+  std::vector<std::uint32_t> kept_;   // first_contact()'s scratch: the neighbours worth solving for
+  AlignedWords list_;                 // list_cap_ words per particle: count, then neighbours
   std::size_t list_cap_ = 0;
-  double slot_rounding_ = 0.0;           // m, bound on the error of a distance between centres in slots
+  double slot_rounding_ = 0.0;  // m, bound on the error of a distance between centres in slots
   // Per cell, slot_cap_ (a multiple of 8) slots: list centres from the box's low corner in single
   // precision, rows of x, y and z, and the particles' indices; unused slots lie far away.
   static constexpr float kFarSlot = 1e18f;
@@ -401,7 +406,7 @@ class NeighborLists {
   std::vector<std::uint32_t> slot_id_;
   std::vector<std::uint32_t> slot_count_, slot_of_;
   std::size_t slot_cap_ = 0;
-  std::vector<std::uint32_t> found_;     // search_neighbors()' scratch, slot_cap_ long
+  std::vector<std::uint32_t> found_;  // search_neighbors()' scratch, slot_cap_ long
 };
 
 }  // namespace grainflow::edmd

@@ -34,7 +34,7 @@ class StallDetector {
   double window_start() const { return window_start_; }
 
  private:
-  long long events_ = 0;      // events since the window began
+  long long events_ = 0;       // events since the window began
   double window_start_ = 0.0;  // s
   double moved_ = 0.0;         // s, over the last closed window
 };

@@ -18,13 +18,13 @@
 namespace grainflow::engine_api {
 
 struct EnergyBudget {
-  double gravity_work = 0.0;   // J, along the periodic axes
-  double wall_work = 0.0;      // J, moving and vibrating walls (the servo's included)
-  double boundary_work = 0.0;  // J, Lees-Edwards boundaries and periodic images moving with a Couette cell's width
-  double growth_work = 0.0;    // J, soft spheres: contacts pushed apart as radii grow (radius expansion)
+  double gravity_work = 0.0;     // J, along the periodic axes
+  double wall_work = 0.0;        // J, moving and vibrating walls (the servo's included)
+  double boundary_work = 0.0;    // J, Lees-Edwards boundaries and periodic images moving with a Couette cell's width
+  double growth_work = 0.0;      // J, soft spheres: contacts pushed apart as radii grow (radius expansion)
   double separation_work = 0.0;  // J, event-driven: Campbell's re-separation shifts against gravity
-  double change = 0.0;         // J, kinetic + rotational + potential (+ elastic, soft spheres) since the start
-  double dissipated = 0.0;     // J, lost in collisions and contacts since the start
+  double change = 0.0;           // J, kinetic + rotational + potential (+ elastic, soft spheres) since the start
+  double dissipated = 0.0;       // J, lost in collisions and contacts since the start
 
   double input() const { return gravity_work + wall_work + boundary_work + growth_work + separation_work; }
   // (input - change - dissipated) / max(|input|, |dissipated|); `fallback_scale` (J) where both

@@ -13,7 +13,8 @@ std::string state_name(int rank) { return rank == 0 ? "/state" : "/state_rank_" 
 
 void write_checkpoint(const std::string& path, const CheckpointHeader& h, const ParticleStore& p,
                       const std::vector<std::vector<std::uint8_t>>& states, const std::vector<std::uint8_t>& portable) {
-  if (states.size() != static_cast<std::size_t>(h.ranks)) throw RunError("checkpoint: one state per MPI rank is needed");
+  if (states.size() != static_cast<std::size_t>(h.ranks))
+    throw RunError("checkpoint: one state per MPI rank is needed");
   H5Writer file(path);
   file.attribute("/", "format", std::string(kFormat));
   file.attribute("/", "engine", h.engine);
@@ -92,7 +93,8 @@ Checkpoint read_checkpoint(const std::string& path, int rank) {
   reading(path, [&](const H5Reader& file) {
     c.header = header_of(file, path);
     if (rank == kPortable) {
-      if (!file.has("/portable")) throw InputError(path, "", "it holds no portable state (written by an older version)");
+      if (!file.has("/portable"))
+        throw InputError(path, "", "it holds no portable state (written by an older version)");
       c.state = file.read_bytes("/portable");
       c.portable = true;
     } else if (rank < c.header.ranks) {

@@ -15,13 +15,13 @@
 namespace grainflow::io {
 
 struct CheckpointHeader {
-  std::string engine;       // "dem" | "edmd"
+  std::string engine;  // "dem" | "edmd"
   long long dimension = 3;
   long long particles = 0;
-  double time = 0.0;        // s (or the case's time unit)
-  long long step = 0;       // dem: steps; edmd: events
+  double time = 0.0;   // s (or the case's time unit)
+  long long step = 0;  // dem: steps; edmd: events
   std::string version, case_path, case_overrides;
-  long long ranks = 1;      // MPI ranks that wrote it: each rank's state is its own (same count to restart)
+  long long ranks = 1;  // MPI ranks that wrote it: each rank's state is its own (same count to restart)
 };
 
 // `states`: one per rank (header.ranks of them), in /state and /state_rank_1, /state_rank_2, ...;

@@ -74,8 +74,9 @@ void GrowingDataset::append(const double* row) {
   count[0] = 1;
   check_status(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), file_,
                "select a sample of '" + name_ + "'");
-  H5Handle memory(check(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), file_, "describe a sample"),
-                  close_space);
+  H5Handle memory(
+      check(H5Screate_simple(static_cast<int>(count.size()), count.data(), nullptr), file_, "describe a sample"),
+      close_space);
   check_status(H5Dwrite(dataset_.get(), H5T_NATIVE_DOUBLE, memory.get(), space.get(), H5P_DEFAULT, row), file_,
                "write a sample of '" + name_ + "'");
   ++samples_;
@@ -86,8 +87,9 @@ void GrowingDataset::append(const double* row) {
 
 H5Writer::H5Writer(std::string path) : path_(std::move(path)), temporary_(path_ + ".tmp") {
   silence_hdf5();
-  file_ = H5Handle(check(H5Fcreate(temporary_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), temporary_, "create it"),
-                   close_file);
+  file_ =
+      H5Handle(check(H5Fcreate(temporary_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), temporary_, "create it"),
+               close_file);
 }
 
 H5Writer::~H5Writer() {
@@ -134,8 +136,9 @@ void H5Writer::write(const std::string& name, const std::vector<double>& values,
   std::vector<hsize_t> dims(shape.begin(), shape.end());
   const auto count = std::accumulate(dims.begin(), dims.end(), hsize_t{1}, std::multiplies<>());
   if (count != values.size()) fail(path_, "write '" + name + "': shape does not match the values");
-  H5Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), path_, "describe '" + name + "'"),
-                 close_space);
+  H5Handle space(
+      check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), path_, "describe '" + name + "'"),
+      close_space);
   H5Handle d(check(H5Dcreate2(file_.get(), name.c_str(), H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, H5P_DEFAULT,
                               H5P_DEFAULT),
                    path_, "create dataset '" + name + "'"),
@@ -215,16 +218,15 @@ H5Reader::H5Reader(std::string path) : path_(std::move(path)) {
   file_ = H5Handle(check(H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), path_, "open it"), close_file);
 }
 
-bool H5Reader::has(const std::string& name) const {
-  return H5Lexists(file_.get(), name.c_str(), H5P_DEFAULT) > 0;
-}
+bool H5Reader::has(const std::string& name) const { return H5Lexists(file_.get(), name.c_str(), H5P_DEFAULT) > 0; }
 
 bool H5Reader::has_attribute(const std::string& where, const std::string& key) const {
   return H5Aexists_by_name(file_.get(), where.c_str(), key.c_str(), H5P_DEFAULT) > 0;
 }
 
 std::vector<std::uint8_t> H5Reader::read_bytes(const std::string& name) const {
-  H5Handle d(check(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), path_, "open dataset '" + name + "'"), close_dataset);
+  H5Handle d(check(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), path_, "open dataset '" + name + "'"),
+             close_dataset);
   H5Handle space(check(H5Dget_space(d.get()), path_, "get the space of '" + name + "'"), close_space);
   const hssize_t count = H5Sget_simple_extent_npoints(space.get());
   if (count < 0) fail(path_, "read the size of '" + name + "'");
@@ -236,7 +238,8 @@ std::vector<std::uint8_t> H5Reader::read_bytes(const std::string& name) const {
 }
 
 H5Array H5Reader::read(const std::string& name) const {
-  H5Handle d(check(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), path_, "open dataset '" + name + "'"), close_dataset);
+  H5Handle d(check(H5Dopen2(file_.get(), name.c_str(), H5P_DEFAULT), path_, "open dataset '" + name + "'"),
+             close_dataset);
   H5Handle space(check(H5Dget_space(d.get()), path_, "get the space of '" + name + "'"), close_space);
   const int rank = H5Sget_simple_extent_ndims(space.get());
   if (rank < 0) fail(path_, "read the rank of '" + name + "'");
@@ -273,7 +276,8 @@ std::string H5Reader::text(const std::string& where, const std::string& key) con
 
 void resume_streams(const std::string& path, std::initializer_list<GrowingDataset*> datasets, std::size_t rows) {
   if (!std::filesystem::is_regular_file(path))
-    throw InputError(path, "", "missing: the checkpoint's copy of a stream written as the run goes (keep it beside checkpoint.h5)");
+    throw InputError(
+        path, "", "missing: the checkpoint's copy of a stream written as the run goes (keep it beside checkpoint.h5)");
   try {
     const H5Reader source(path);
     for (GrowingDataset* d : datasets) d->append_from(source, rows);

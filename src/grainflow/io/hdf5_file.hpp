@@ -72,8 +72,7 @@ class H5Writer {
   // samples one HDF5 chunk holds.
   GrowingDataset growing(const std::string& name, const std::vector<unsigned long long>& shape,
                          unsigned long long chunk_samples = 64);
-  void write(const std::string& name, const std::vector<double>& values,
-             const std::vector<unsigned long long>& shape);
+  void write(const std::string& name, const std::vector<double>& values, const std::vector<unsigned long long>& shape);
   void write(const std::string& name, const std::vector<std::int64_t>& values);
   void write_bytes(const std::string& name, const std::vector<std::uint8_t>& bytes);  // opaque state (checkpoints)
   // Attributes on the object `where` ("/" for the file).
@@ -87,7 +86,8 @@ class H5Writer {
   void copy_to(const std::string& path);
 
  private:
-  void write_flat(const std::string& name, std::int64_t type, const void* data, std::size_t count);  // 1-D, HDF5 type id
+  void write_flat(const std::string& name, std::int64_t type, const void* data,
+                  std::size_t count);  // 1-D, HDF5 type id
   std::string path_, temporary_;
   H5Handle file_;
   bool committed_ = false;
@@ -108,7 +108,7 @@ class H5Reader {
   explicit H5Reader(std::string path);
   bool has(const std::string& name) const;
   bool has_attribute(const std::string& where, const std::string& key) const;
-  H5Array read(const std::string& name) const;            // any numeric dataset, as doubles
+  H5Array read(const std::string& name) const;  // any numeric dataset, as doubles
   std::vector<std::uint8_t> read_bytes(const std::string& name) const;
   double number(const std::string& where, const std::string& key) const;
   std::string text(const std::string& where, const std::string& key) const;

@@ -11,10 +11,18 @@ std::string json_quote(const std::string& text) {
   std::string out = "\"";
   for (char ch : text) {
     switch (ch) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(ch) < 0x20) {
           char buffer[8];
@@ -33,9 +41,15 @@ namespace {
 void append_text(const nlohmann::ordered_json& value, std::string& out) {
   using Type = nlohmann::ordered_json::value_t;
   switch (value.type()) {
-    case Type::boolean: out += value.get<bool>() ? "true" : "false"; return;
-    case Type::number_integer: out += std::to_string(value.get<std::int64_t>()); return;
-    case Type::number_unsigned: out += std::to_string(value.get<std::uint64_t>()); return;
+    case Type::boolean:
+      out += value.get<bool>() ? "true" : "false";
+      return;
+    case Type::number_integer:
+      out += std::to_string(value.get<std::int64_t>());
+      return;
+    case Type::number_unsigned:
+      out += std::to_string(value.get<std::uint64_t>());
+      return;
     case Type::number_float: {
       const double x = value.get<double>();
       if (!std::isfinite(x)) break;  // null
@@ -44,7 +58,9 @@ void append_text(const nlohmann::ordered_json& value, std::string& out) {
       out += buffer;
       return;
     }
-    case Type::string: out += json_quote(value.get_ref<const std::string&>()); return;
+    case Type::string:
+      out += json_quote(value.get_ref<const std::string&>());
+      return;
     case Type::array: {
       out += '[';
       for (std::size_t i = 0; i < value.size(); ++i) {
@@ -66,7 +82,8 @@ void append_text(const nlohmann::ordered_json& value, std::string& out) {
       out += '}';
       return;
     }
-    default: break;  // null, and the binary and discarded values JSON text cannot hold
+    default:
+      break;  // null, and the binary and discarded values JSON text cannot hold
   }
   out += "null";
 }

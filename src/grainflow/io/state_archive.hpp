@@ -58,9 +58,10 @@ class StateArchive {
   static constexpr bool kPlain = std::is_trivially_copyable_v<T> && !std::is_pointer_v<T>;
 
   template <class T>
-  static constexpr bool has_serialize(int) requires requires(T& t, StateArchive& a) { t.serialize(a); } {
-    return true;
+  static constexpr bool has_serialize(int) requires requires(T& t, StateArchive& a) {
+    t.serialize(a);
   }
+  { return true; }
   template <class T>
   static constexpr bool has_serialize(long) {
     return false;

@@ -28,8 +28,8 @@ void write_vti(const std::string& path, const ImageGrid& grid, const std::vector
     if (a.values.size() != cells * static_cast<std::size_t>(a.components))
       throw std::invalid_argument("cell array '" + a.name + "' does not match the grid");
   write_atomically(path, [&](std::ostream& out) {
-    const std::string extent =
-        "0 " + std::to_string(grid.cells[0]) + " 0 " + std::to_string(grid.cells[1]) + " 0 " + std::to_string(grid.cells[2]);
+    const std::string extent = "0 " + std::to_string(grid.cells[0]) + " 0 " + std::to_string(grid.cells[1]) + " 0 " +
+                               std::to_string(grid.cells[2]);
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"ImageData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
         << "  <ImageData WholeExtent=\"" << extent << "\" Origin=\"" << exact(grid.origin[0]) << ' '

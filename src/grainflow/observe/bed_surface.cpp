@@ -28,7 +28,8 @@ std::vector<double> slab_fractions(const ParticleStore& p, int dimension, int ax
     if (!p.counted(i) || !included(i)) continue;
     const auto [first, last] = range(i);
     const double r = p.radius[i], c = p.position[i][axis];
-    for (int z = first; z <= last; ++z) volume[z] += particle_slab_measure(dimension, r, c, floor + z * thickness, floor + (z + 1) * thickness);
+    for (int z = first; z <= last; ++z)
+      volume[z] += particle_slab_measure(dimension, r, c, floor + z * thickness, floor + (z + 1) * thickness);
   }
   ranks.sum(volume.data(), volume.size());
   for (double& v : volume) v /= thickness * area;
@@ -62,10 +63,8 @@ BedSurface measure_bed_surface(const ParticleStore& p, int dimension, int axis, 
   double volume_and_ballistic[2] = {};
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.counted(i)) continue;
-    if (in_bed(i))
-      volume_and_ballistic[0] += ball_measure(dimension, p.radius[i]);
-    else
-      volume_and_ballistic[1] += 1.0;
+    if (in_bed(i)) volume_and_ballistic[0] += ball_measure(dimension, p.radius[i]);
+    else volume_and_ballistic[1] += 1.0;
   }
   ranks.sum(volume_and_ballistic, 2);
   out.ballistic = std::lround(volume_and_ballistic[1]);

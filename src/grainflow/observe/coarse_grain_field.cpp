@@ -86,7 +86,8 @@ bool CoarseGrainField::spread(const Vec3& x, const double* values, std::size_t o
       for (const auto& [ix, fx] : axis_cells[0]) {
         const double w = gaussian ? fx * fy * fz : kernel_.shape(fx + fy + fz);
         if (w <= 0.0) continue;
-        const std::size_t k = ix + static_cast<std::size_t>(cells_[0]) * (iy + static_cast<std::size_t>(cells_[1]) * iz);
+        const std::size_t k =
+            ix + static_cast<std::size_t>(cells_[0]) * (iy + static_cast<std::size_t>(cells_[1]) * iz);
         scratch_.emplace_back(k, w);
         total += w;
       }

@@ -73,7 +73,9 @@ class CoarseGrainField {
 
   long samples() const { return samples_; }
   const std::array<int, 3>& cells() const { return cells_; }
-  bool averaged(int axis) const { return cells_[axis] == 1 && (box_.periodic[axis] || (axis == 2 && kernel_.dimension == 2)); }
+  bool averaged(int axis) const {
+    return cells_[axis] == 1 && (box_.periodic[axis] || (axis == 2 && kernel_.dimension == 2));
+  }
   std::size_t cell_count() const { return static_cast<std::size_t>(cells_[0]) * cells_[1] * cells_[2]; }
   Vec3 spacing() const { return spacing_; }
   Vec3 origin() const { return box_.lo; }
@@ -106,15 +108,16 @@ class CoarseGrainField {
   long samples_ = 0;
   double lost_mass_ = 0.0;
   std::vector<std::pair<std::size_t, double>> scratch_;  // the cells of one spread and their weights
-  std::array<std::vector<std::pair<int, double>>, 3> axis_scratch_;  // per axis: cell, Gaussian factor or squared distance
+  std::array<std::vector<std::pair<int, double>>, 3>
+      axis_scratch_;  // per axis: cell, Gaussian factor or squared distance
 };
 
 // The time-averaged fields of one cell.
 struct CoarseGrainCell {
-  double density = 0.0;         // kg/m^3
-  double solid_fraction = 0.0;  // solid volume per volume
-  Vec3 momentum;                // kg/(m^2 s)
-  Vec3 velocity;                // m/s, momentum / density (0 where no mass reaches)
+  double density = 0.0;                                 // kg/m^3
+  double solid_fraction = 0.0;                          // solid volume per volume
+  Vec3 momentum;                                        // kg/(m^2 s)
+  Vec3 velocity;                                        // m/s, momentum / density (0 where no mass reaches)
   std::array<double, 9> kinetic{}, contact{}, total{};  // Pa, row-major (xx, xy, xz, yx, ...)
 };
 CoarseGrainCell coarse_grain_cell(const CoarseGrainField& field, std::size_t k);

@@ -78,7 +78,8 @@ void CoarseGrainObserver::write(const Frame&, OutputSink& out) {
                 {{"samples", static_cast<double>(whole.samples())},
                  {"first_sample_time", first_},
                  {"last_sample_time", last_},
-                 {std::string("kernel_") + (whole.kernel().kind == CoarseGrainKernel::Kind::lucy ? "cutoff" : "width"), whole.kernel().width},
+                 {std::string("kernel_") + (whole.kernel().kind == CoarseGrainKernel::Kind::lucy ? "cutoff" : "width"),
+                  whole.kernel().width},
                  {"kernel_standard_deviation", whole.kernel().standard_deviation()}});
 }
 

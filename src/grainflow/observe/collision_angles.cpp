@@ -7,8 +7,8 @@ namespace grainflow::observe {
 
 double CollisionAngles::angle_of(const Vec3& line) {
   double theta = std::atan2(line.y, line.x);  // (-pi, pi]
-  if (theta < 0.0) theta += M_PI;              // the opposite direction: same collision
-  return theta >= M_PI ? 0.0 : theta;          // pi itself is the direction of 0
+  if (theta < 0.0) theta += M_PI;             // the opposite direction: same collision
+  return theta >= M_PI ? 0.0 : theta;         // pi itself is the direction of 0
 }
 
 void CollisionAngles::add(const Vec3& line) {

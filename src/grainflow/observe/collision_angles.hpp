@@ -20,8 +20,8 @@ class CollisionAngles {
   void add(const Vec3& line_of_centres);
 
   int bins() const { return static_cast<int>(counts_.size()); }
-  double bin_width() const;                  // rad
-  double centre(int k) const;                // rad
+  double bin_width() const;    // rad
+  double centre(int k) const;  // rad
   long long count(int k) const { return counts_[k]; }
   long long total() const { return total_; }
 
@@ -29,7 +29,7 @@ class CollisionAngles {
   void serialize(Archive& ar) {
     ar(counts_, total_, skipped_);
   }
-  double density(int k) const;               // 1/rad: count / (total x bin width); 0 with no collisions
+  double density(int k) const;                    // 1/rad: count / (total x bin width); 0 with no collisions
   long long skipped() const { return skipped_; }  // 3D lines along z, which have no angle in x-y
 
  private:

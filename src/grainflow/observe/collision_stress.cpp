@@ -76,7 +76,8 @@ void StressProfile::begin(const StripGrid& grid, const ParticleStore& p, double 
   std::fill(momentum_start_.begin(), momentum_start_.end(), Vec3{});
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!p.owned(i)) continue;
-    if (const int k = strip_of(grid, p.position[i][grid.axis()]); k >= 0) momentum_start_[k] += p.mass[i] * p.velocity[i];
+    if (const int k = strip_of(grid, p.position[i][grid.axis()]); k >= 0)
+      momentum_start_[k] += p.mass[i] * p.velocity[i];
   }
   ranks.sum_records(momentum_start_);
   momentum_end_ = momentum_start_;
@@ -85,8 +86,9 @@ void StressProfile::begin(const StripGrid& grid, const ParticleStore& p, double 
 void StressProfile::add_segment(const StripGrid& grid, const Vec3& from, const Vec3& to, const Vec3& impulse) {
   const Vec3 branch = to - from;
   const double per_measure = 1.0 / grid.measure();
-  for_each_share(grid, from[grid.axis()], to[grid.axis()],
-                 [&](int k, double fraction) { add_outer(interval_[k].collisional, fraction * per_measure, branch, impulse); });
+  for_each_share(grid, from[grid.axis()], to[grid.axis()], [&](int k, double fraction) {
+    add_outer(interval_[k].collisional, fraction * per_measure, branch, impulse);
+  });
 }
 
 void StressProfile::add(const StripGrid& grid, const engine_api::PairCollision& c) {
@@ -105,8 +107,8 @@ void StressProfile::add(const StripGrid& grid, const engine_api::WallCollision& 
   add_segment(grid, c.contact, c.x, c.impulse);
 }
 
-void StressProfile::add_contact_force(const StripGrid& grid, const Vec3& centre, const Vec3& contact,
-                                      const Vec3& force, double duration) {
+void StressProfile::add_contact_force(const StripGrid& grid, const Vec3& centre, const Vec3& contact, const Vec3& force,
+                                      double duration) {
   if (!started_) return;
   add_segment(grid, contact, centre, force * duration);
 }

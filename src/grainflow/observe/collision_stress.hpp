@@ -36,17 +36,17 @@ namespace grainflow::observe {
 using Tensor3 = std::array<double, 9>;  // index a * 3 + b
 
 struct StripStress {
-  double lo = 0.0, hi = 0.0;               // m, strip bounds at the end of averaging
-  Tensor3 collisional{}, kinetic{}, total{};                   // Pa (2D: N/m)
+  double lo = 0.0, hi = 0.0;                                    // m, strip bounds at the end of averaging
+  Tensor3 collisional{}, kinetic{}, total{};                    // Pa (2D: N/m)
   Tensor3 collisional_error{}, kinetic_error{}, total_error{};  // standard errors (NaN: too few blocks)
-  double collision_rate = 0.0;             // pair collisions with the contact point here, 1/(s m^D)
+  double collision_rate = 0.0;               // pair collisions with the contact point here, 1/(s m^D)
   double collision_rate_per_particle = 0.0;  // 1/s: 2 x those collisions per s / mean particle count
-  double dissipation_rate = 0.0;           // W/m^D lost in those collisions
-  double number = 0.0;                     // mean count of particle centres in the strip
-  double mass_density = 0.0;               // kg/m^D, of the centres in the strip
-  Vec3 mean_velocity;                      // m/s, long-term mass mean of the centres in the strip
-  Vec3 momentum_rate;                      // N/m^D: (momentum at the end - at the start) / time / measure
-  Vec3 weight_row;                         // Pa: the weight-integral estimate of P_{axis,b} at the centre
+  double dissipation_rate = 0.0;             // W/m^D lost in those collisions
+  double number = 0.0;                       // mean count of particle centres in the strip
+  double mass_density = 0.0;                 // kg/m^D, of the centres in the strip
+  Vec3 mean_velocity;                        // m/s, long-term mass mean of the centres in the strip
+  Vec3 momentum_rate;                        // N/m^D: (momentum at the end - at the start) / time / measure
+  Vec3 weight_row;                           // Pa: the weight-integral estimate of P_{axis,b} at the centre
 };
 
 class StressProfile {
@@ -87,11 +87,11 @@ class StressProfile {
 
  private:
   struct Sums {
-    Tensor3 collisional{};  // sum share (x_i - x_j) (x) J / measure
-    Tensor3 second{};       // over samples, sum m v (x) v / measure
-    Vec3 momentum;          // over samples, sum m v / measure
-    double mass = 0.0;      // over samples, sum m / measure
-    double number = 0.0;    // over samples, centres counted
+    Tensor3 collisional{};         // sum share (x_i - x_j) (x) J / measure
+    Tensor3 second{};              // over samples, sum m v (x) v / measure
+    Vec3 momentum;                 // over samples, sum m v / measure
+    double mass = 0.0;             // over samples, sum m / measure
+    double number = 0.0;           // over samples, centres counted
     double collisions = 0.0;       // count / measure
     double collision_count = 0.0;  // count
     double dissipated = 0.0;       // J / measure
@@ -111,8 +111,8 @@ class StressProfile {
   double start_time_ = 0.0, last_time_ = 0.0;
   long samples_ = 0;
   std::vector<Sums> total_, interval_;
-  BlockSums<Sums> blocks_;  // per interval, weighted by its duration
-  std::vector<Vec3> momentum_start_, momentum_end_;  // kg m/s per strip
+  BlockSums<Sums> blocks_;                             // per interval, weighted by its duration
+  std::vector<Vec3> momentum_start_, momentum_end_;    // kg m/s per strip
   double thickness_ = 0.0, measure_ = 0.0, lo_ = 0.0;  // the strips at the last sample: m, m^D, m
 };
 

@@ -99,8 +99,9 @@ void CollisionStressObserver::write(const Frame& last, OutputSink& out) {
   io::JsonObject& summary = *out.summary;
   std::vector<std::string>& warnings = *out.warnings;
   if (!started_ || stress_.samples() == 0)
-    warnings.push_back("stresses.csv, walls.csv, collision_angles.csv: no averaging interval completed after "
-                       "output.average_start (and output.average_start_collisions); their values are nan");
+    warnings.push_back(
+        "stresses.csv, walls.csv, collision_angles.csv: no averaging interval completed after "
+        "output.average_start (and output.average_start_collisions); their values are nan");
   const std::vector<WallLoad> loads = walls_.averages();
   const auto strips = strip_stresses();
   const double s = shear_parameter(strips);

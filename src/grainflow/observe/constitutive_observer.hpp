@@ -33,7 +33,8 @@ void write_constitutive(const std::string& path, const CaseConfig& c, int dimens
 // are written (it samples nothing itself).
 class ConstitutiveObserver final : public Observer {
  public:
-  ConstitutiveObserver(const RunContext& run, const StripProfileObserver& profiles, const CollisionStressObserver& stresses)
+  ConstitutiveObserver(const RunContext& run, const StripProfileObserver& profiles,
+                       const CollisionStressObserver& stresses)
       : c_(run.c), profiles_(&profiles), stresses_(&stresses) {}
 
   std::string name() const override { return "constitutive"; }

@@ -38,7 +38,7 @@ class ContactStressObserver final : public Observer {
 
  private:
   const CaseConfig& c_;
-  RankReduce ranks_;  // each rank adds its own particles and contacts; sums over ranks at each sample
+  RankReduce ranks_;              // each rank adds its own particles and contacts; sums over ranks at each sample
   const Frame* frame_ = nullptr;  // the run's frame (its box and walls), seen at the last sample
   StripLayout strips_;
   StressProfile stress_;

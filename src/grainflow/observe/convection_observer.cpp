@@ -67,9 +67,8 @@ VelocityField make_field(const RunContext& run, const ObserverParameters& table)
 
 }  // namespace
 
-const ObserverSchema ConvectionObserver::table = {"field", "dem",
-                                                  "velocity fields are implemented for the DEM engine only",
-                                                  &read_table, &check_table};
+const ObserverSchema ConvectionObserver::table = {
+    "field", "dem", "velocity fields are implemented for the DEM engine only", &read_table, &check_table};
 
 ConvectionObserver::ConvectionObserver(const RunContext& run)
     : run_(run),
@@ -119,8 +118,10 @@ void ConvectionObserver::write(const Frame& last, OutputSink& out) {
   });
   if (field_.bins() > 0)
     io::write_atomically(out.directory + "/convection_phases.csv", [&](std::ostream& file) {
-      header(file, "convection field in " + std::to_string(field_.bins()) +
-                       " bins of the floor phase omega (t - drive.start) + phase (0: floor at rest height moving up fastest)");
+      header(
+          file,
+          "convection field in " + std::to_string(field_.bins()) +
+              " bins of the floor phase omega (t - drive.start) + phase (0: floor at rest height moving up fastest)");
       file << "phase_bin,column,row,horizontal,vertical,visits,velocity_horizontal,velocity_vertical,speed\n";
       for (int b = 0; b < field_.bins(); ++b) cells(file, b);
     });

@@ -31,7 +31,8 @@ inline double floor_position(const FaceWalls& walls, const CaseConfig& c, int ax
 // Phase of the floor's velocity cosine, omega (t - start) + phase, in [0, 2 pi); -1 without a
 // drive along `axis` or before it starts.
 inline double floor_phase(const CaseConfig& c, int axis, double time) {
-  if (!c.drive.enabled || c.drive.face != 2 * axis || !(c.drive.frequency[axis] > 0.0) || time < c.drive.start) return -1.0;
+  if (!c.drive.enabled || c.drive.face != 2 * axis || !(c.drive.frequency[axis] > 0.0) || time < c.drive.start)
+    return -1.0;
   const double phase = 2.0 * M_PI * c.drive.frequency[axis] * (time - c.drive.start) + c.drive.phase[axis];
   return phase - 2.0 * M_PI * std::floor(phase / (2.0 * M_PI));
 }

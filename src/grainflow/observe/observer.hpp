@@ -39,10 +39,10 @@ inline long first_grid_index(double time, double interval) {
 
 struct Frame {
   int dimension = 3;
-  double time = 0.0;          // s
-  double time_step = 0.0;     // s, the soft-sphere step that ended at `time`; 0 in an event-driven run
-  long step = 0;              // soft-sphere steps taken
-  long long collisions = 0;   // collisions so far (event-driven: binary particle collisions)
+  double time = 0.0;                         // s
+  double time_step = 0.0;                    // s, the soft-sphere step that ended at `time`; 0 in an event-driven run
+  long step = 0;                             // soft-sphere steps taken
+  long long collisions = 0;                  // collisions so far (event-driven: binary particle collisions)
   const ParticleStore* particles = nullptr;  // this rank's, current at `time`
   const PeriodicBox* box = nullptr;
   FaceWalls walls;

@@ -20,8 +20,9 @@ void finish_samples(io::H5Writer& file, const std::string& table, long taken, lo
                     std::vector<std::string>& warnings) {
   file.attribute("/", "samples", static_cast<std::int64_t>(taken));
   if (taken < requested)
-    warnings.push_back(table + ": the run ended after " + std::to_string(taken) + " of the " + std::to_string(requested) +
-                       " requested samples (" + table + ".start and samples need a longer run.duration)");
+    warnings.push_back(table + ": the run ended after " + std::to_string(taken) + " of the " +
+                       std::to_string(requested) + " requested samples (" + table +
+                       ".start and samples need a longer run.duration)");
   file.commit();
 }
 

@@ -58,9 +58,10 @@ StateTrajectoryObserver::StateTrajectoryObserver(const RunContext& run, const Fr
   file_.attribute("/", "samples_requested", static_cast<std::int64_t>(requested_));
   file_.attribute("/", "case", c.path);
   file_.attribute("/", "version", std::string(kVersion));
-  file_.attribute("/", "units",
-                  std::string("time s, position m (unwrapped), velocity m/s, angular_velocity rad/s, radius m, wall_lo, "
-                              "wall_hi, strip_lo, strip_hi, box_width m"));
+  file_.attribute(
+      "/", "units",
+      std::string("time s, position m (unwrapped), velocity m/s, angular_velocity rad/s, radius m, wall_lo, "
+                  "wall_hi, strip_lo, strip_hi, box_width m"));
   const auto n = static_cast<unsigned long long>(followed_);
   time_ = file_.growing("/time", {}, 1024);
   position_ = file_.growing("/position", {n, 3}, 16);
@@ -114,8 +115,8 @@ void StateTrajectoryObserver::finish(OutputSink& out) {
   file_.attribute("/", "samples", static_cast<std::int64_t>(taken_));
   if (taken_ < requested_)
     out.warnings->push_back("trajectory: the run ended after " + std::to_string(taken_) + " of the " +
-                       std::to_string(requested_) +
-                       " requested samples (trajectory.start, interval and samples need a longer run.duration)");
+                            std::to_string(requested_) +
+                            " requested samples (trajectory.start, interval and samples need a longer run.duration)");
   file_.commit();
 }
 

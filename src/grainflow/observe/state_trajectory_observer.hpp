@@ -35,9 +35,9 @@ class StateTrajectoryObserver final : public Observer {
   void save_streams(const std::string& folder) override { file_.copy_to(folder + "/checkpoint_trajectory.h5"); }
   void resume_streams(const std::string& folder) override {
     io::resume_streams(folder + "/checkpoint_trajectory.h5",
-                   {&time_, &position_, &velocity_, &angular_velocity_, &wall_lo_at_, &wall_hi_at_, &strip_lo_, &strip_hi_,
-                    &width_},
-                   static_cast<std::size_t>(taken_));
+                       {&time_, &position_, &velocity_, &angular_velocity_, &wall_lo_at_, &wall_hi_at_, &strip_lo_,
+                        &strip_hi_, &width_},
+                       static_cast<std::size_t>(taken_));
   }
 
  private:
@@ -45,7 +45,7 @@ class StateTrajectoryObserver final : public Observer {
   StripLayout strips_;
   std::vector<std::int32_t> column_of_id_;  // -1 for particles not followed
   std::size_t followed_ = 0;
-  int wall_lo_ = -1, wall_hi_ = -1;         // indices of the ylo and yhi walls, -1 when none
+  int wall_lo_ = -1, wall_hi_ = -1;  // indices of the ylo and yhi walls, -1 when none
   double start_, interval_;
   long long requested_, taken_ = 0;
   io::GrowingDataset time_, position_, velocity_, angular_velocity_, wall_lo_at_, wall_hi_at_, strip_lo_, strip_hi_,

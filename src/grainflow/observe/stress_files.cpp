@@ -16,7 +16,8 @@ std::string component_name(int a, int b) { return std::string{kAxisNames[a], kAx
 
 }  // namespace
 
-void write_stress_file(const std::string& path, const std::vector<StripStress>& strips, const StressFileLayout& layout) {
+void write_stress_file(const std::string& path, const std::vector<StripStress>& strips,
+                       const StressFileLayout& layout) {
   const int dim_ = layout.dimension;
   const bool walls = layout.between_walls;
   const char* stress = dim_ == 2 ? "N/m" : "Pa";
@@ -31,7 +32,8 @@ void write_stress_file(const std::string& path, const std::vector<StripStress>& 
     if (walls) out << ",y_over_H";
     for (const char* part : {layout.contact_part, "kinetic", "total"})
       for (int a = 0; a < dim_; ++a)
-        for (int b = 0; b < dim_; ++b) out << ',' << part << '_' << component_name(a, b) << ',' << part << '_' << component_name(a, b) << "_error";
+        for (int b = 0; b < dim_; ++b)
+          out << ',' << part << '_' << component_name(a, b) << ',' << part << '_' << component_name(a, b) << "_error";
     out << ",number,mass_density,collision_rate,collision_rate_per_particle,dissipation_rate";
     for (int b = 0; b < dim_; ++b) out << ",momentum_rate_" << kAxisNames[b];
     for (int b = 0; b < dim_; ++b) out << ",weight_y" << kAxisNames[b];
@@ -41,13 +43,14 @@ void write_stress_file(const std::string& path, const std::vector<StripStress>& 
       const double y = 0.5 * (s.lo + s.hi);
       out << y;
       if (walls) out << ',' << (y - lo) / (hi - lo);
-      for (auto [value, error] : {std::pair{&s.collisional, &s.collisional_error}, std::pair{&s.kinetic, &s.kinetic_error},
-                                  std::pair{&s.total, &s.total_error}})
+      for (auto [value, error] : {std::pair{&s.collisional, &s.collisional_error},
+                                  std::pair{&s.kinetic, &s.kinetic_error}, std::pair{&s.total, &s.total_error}})
         for (int a = 0; a < dim_; ++a)
           for (int b = 0; b < dim_; ++b) out << ',' << (*value)[a * 3 + b] << ',' << (*error)[a * 3 + b];
       const double nan = std::numeric_limits<double>::quiet_NaN();
       out << ',' << s.number << ',' << s.mass_density << ',' << (layout.collisions ? s.collision_rate : nan) << ','
-          << (layout.collisions ? s.collision_rate_per_particle : nan) << ',' << (layout.collisions ? s.dissipation_rate : nan);
+          << (layout.collisions ? s.collision_rate_per_particle : nan) << ','
+          << (layout.collisions ? s.dissipation_rate : nan);
       for (int b = 0; b < dim_; ++b) out << ',' << s.momentum_rate[b];
       for (int b = 0; b < dim_; ++b) out << ',' << s.weight_row[b];
       out << '\n';
@@ -69,11 +72,10 @@ void write_wall_file(const std::string& path, const std::vector<WallLoad>& loads
     for (std::size_t w = 0; w < loads.size(); ++w) {
       const auto& wall = frame_walls[w];
       const auto& l = loads[w];
-      out << kFaceNames[wall.face] << ',' << kAxisNames[wall.axis] << ',' << wall.at(time) << ','
-          << areas[w] << ',' << l.collisions << ',' << l.normal_stress << ',' << l.normal_stress_error
-          << ',' << l.shear_stress << ',' << l.shear_stress_error << ',' << l.friction << ',' << l.impulse_angle_deg << ','
-          << l.rolling_normal_stress << ',' << l.rolling_shear_stress << ',' << l.collision_rate << ','
-          << l.dissipation_rate << '\n';
+      out << kFaceNames[wall.face] << ',' << kAxisNames[wall.axis] << ',' << wall.at(time) << ',' << areas[w] << ','
+          << l.collisions << ',' << l.normal_stress << ',' << l.normal_stress_error << ',' << l.shear_stress << ','
+          << l.shear_stress_error << ',' << l.friction << ',' << l.impulse_angle_deg << ',' << l.rolling_normal_stress
+          << ',' << l.rolling_shear_stress << ',' << l.collision_rate << ',' << l.dissipation_rate << '\n';
     }
   });
 }

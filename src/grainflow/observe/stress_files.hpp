@@ -14,9 +14,9 @@ namespace grainflow::observe {
 
 struct StressFileLayout {
   int dimension = 3;
-  bool between_walls = false;       // a y_over_H column
+  bool between_walls = false;                // a y_over_H column
   const char* contact_part = "collisional";  // the name of the non-kinetic part's columns
-  bool collisions = true;           // the collision and dissipation rates mean something (else nan)
+  bool collisions = true;                    // the collision and dissipation rates mean something (else nan)
 };
 
 void write_stress_file(const std::string& path, const std::vector<StripStress>& strips, const StressFileLayout& layout);

@@ -16,7 +16,7 @@ namespace grainflow::observe {
 
 class StripLayout {
  public:
-  static constexpr int kAxis = 1;  // y: the velocity gradient (flow along x)
+  static constexpr int kAxis = 1;          // y: the velocity gradient (flow along x)
   static constexpr int kMaxStrips = 1000;  // block-averaged sums keep up to 512 copies of every strip
 
   StripLayout(const CaseConfig& c, const Frame& s) : dimension_(s.dimension), lees_edwards_rate_(c.lees_edwards_rate) {
@@ -57,10 +57,10 @@ class StripLayout {
   }
 
   int dimension_;
-  double lees_edwards_rate_;  // 1/s: the image row above moves at this rate x the height
+  double lees_edwards_rate_;    // 1/s: the image row above moves at this rate x the height
   int bottom_ = -1, top_ = -1;  // wall indices at ylo and yhi, -1 when none
   int count_ = 1;
-  double top_height_ = 0.0;     // m, the top of the strips without a top wall
+  double top_height_ = 0.0;  // m, the top of the strips without a top wall
 };
 
 }  // namespace grainflow::observe

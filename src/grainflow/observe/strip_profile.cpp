@@ -35,21 +35,22 @@ void StripProfile::sample(const ParticleStore& p, const StripGrid& grid) {
     if (p.motion[i] != Motion::free) continue;
     const Vec3 w = p.angular_velocity[i];
     const double inertia = p.inv_inertia[i] > 0.0 ? 1.0 / p.inv_inertia[i] : 0.0;
-    grid.for_each_overlap(p.position[i][axis], p.radius[i], [&](int k, double part, double fraction, const Vec3& shift) {
-      Sums& s = scratch_[k];
-      const Vec3 v = p.velocity[i] + shift;  // across a Lees-Edwards seam, the image's velocity
-      const double m = p.mass[i] * fraction, moment = inertia * fraction;
-      s.solids_fraction += part / measure;
-      s.mass += m;
-      s.particles += fraction;
-      s.inertia += moment;
-      s.momentum += m * v;
-      s.second_moment += Vec3{m * v.x * v.x, m * v.y * v.y, m * v.z * v.z};
-      s.cross += m * v.x * v.y;
-      s.mass_spin += m * w;
-      s.inertia_spin += moment * w;
-      s.spin_second += moment * norm2(w);
-    });
+    grid.for_each_overlap(p.position[i][axis], p.radius[i],
+                          [&](int k, double part, double fraction, const Vec3& shift) {
+                            Sums& s = scratch_[k];
+                            const Vec3 v = p.velocity[i] + shift;  // across a Lees-Edwards seam, the image's velocity
+                            const double m = p.mass[i] * fraction, moment = inertia * fraction;
+                            s.solids_fraction += part / measure;
+                            s.mass += m;
+                            s.particles += fraction;
+                            s.inertia += moment;
+                            s.momentum += m * v;
+                            s.second_moment += Vec3{m * v.x * v.x, m * v.y * v.y, m * v.z * v.z};
+                            s.cross += m * v.x * v.y;
+                            s.mass_spin += m * w;
+                            s.inertia_spin += moment * w;
+                            s.spin_second += moment * norm2(w);
+                          });
   }
   // Pass 2: Lan's fluctuations about each strip's mean velocity at this instant.
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -98,7 +99,8 @@ std::array<double, strip::kQuantities> StripProfile::values_of(const Sums& s) co
   const Vec3 spin = s.mass_spin * per_mass;
   for (int a = 0; a < 3; ++a) x[omega_x + a] = spin[a];
   const int rotational_freedoms = dimension_ == 2 ? 1 : 3;
-  const double spin_fluctuation = std::max(0.0, s.spin_second - 2.0 * dot(spin, s.inertia_spin) + norm2(spin) * s.inertia);
+  const double spin_fluctuation =
+      std::max(0.0, s.spin_second - 2.0 * dot(spin, s.inertia_spin) + norm2(spin) * s.inertia);
   x[rotational_temperature] = spin_fluctuation * per_mass / rotational_freedoms;
   x[granular_temperature] = translational / dimension_;
   const double particle_mass = s.mass / s.particles;

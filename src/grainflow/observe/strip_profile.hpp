@@ -25,8 +25,9 @@ namespace grainflow::observe {
 
 // Packing limits of sheared discs (Campbell 1982 section 3.1.7), for plots and the plug-flow flag.
 inline constexpr double kDiscTriangularPacking = 0.9068996821171089;  // pi / (2 sqrt 3): cannot shear
-inline constexpr double kDiscContourShearPacking = 0.8210210538742287;  // pi / (sqrt 3 + 2 pi / 3): layers riding over each other
-inline constexpr double kDiscSquarePacking = 0.7853981633974483;      // pi / 4: layers slide freely
+inline constexpr double kDiscContourShearPacking =
+    0.8210210538742287;  // pi / (sqrt 3 + 2 pi / 3): layers riding over each other
+inline constexpr double kDiscSquarePacking = 0.7853981633974483;  // pi / 4: layers slide freely
 // The spheres' counterpart of pi/4 by Campbell's spacing correspondence nu_3D = 4/(3 sqrt pi) nu^(3/2)
 // (section 3.1): pi / 6, the simple cubic packing, whose layers also slide over each other.
 inline constexpr double kSphereCubicPacking = 0.5235987755982988;
@@ -35,12 +36,18 @@ inline constexpr double kSphereCubicPacking = 0.5235987755982988;
 namespace strip {
 enum Quantity : int {
   solids_fraction,
-  mass,                 // kg, mean per sample
-  particles,            // mean number per sample (counted by share)
-  u, v, w,              // m/s, mass-weighted mean velocity
-  omega_x, omega_y, omega_z,  // rad/s, mass-weighted mean angular velocity
-  u_variance, v_variance, w_variance,  // m^2/s^2, <u'^2>, <v'^2>, <w'^2> about the time mean
-  uv_covariance,                       // m^2/s^2, <u'v'>
+  mass,       // kg, mean per sample
+  particles,  // mean number per sample (counted by share)
+  u,
+  v,
+  w,  // m/s, mass-weighted mean velocity
+  omega_x,
+  omega_y,
+  omega_z,  // rad/s, mass-weighted mean angular velocity
+  u_variance,
+  v_variance,
+  w_variance,                 // m^2/s^2, <u'^2>, <v'^2>, <w'^2> about the time mean
+  uv_covariance,              // m^2/s^2, <u'v'>
   rotational_temperature,     // m^2/s^2, beta <|omega'|^2> per rotational degree of freedom
   granular_temperature,       // m^2/s^2, (<u'^2> + <v'^2> [+ <w'^2>]) / D
   temperature,                // J per particle, Campbell's 1/2 m (sum <u_i'^2> + beta <|omega'|^2>)

@@ -166,7 +166,8 @@ void StripProfileObserver::derive_chute(const std::vector<StripAverages>& strips
   d.mass_flow_error = blocked_standard_error(flow);
   d.mean_velocity_error = blocked_standard_error(velocity);
   // Fr = u / sqrt(g H): relative errors add in quadrature, H's at half weight.
-  d.froude_error = std::fabs(d.froude) * std::hypot(d.mean_velocity_error / d.mean_velocity, 0.5 * d.depth_error / d.depth);
+  d.froude_error =
+      std::fabs(d.froude) * std::hypot(d.mean_velocity_error / d.mean_velocity, 0.5 * d.depth_error / d.depth);
 }
 
 std::vector<StripKinematics> StripProfileObserver::strip_kinematics() const {
@@ -174,7 +175,8 @@ std::vector<StripKinematics> StripProfileObserver::strip_kinematics() const {
   Derived d;
   derive_strips(strips, d);
   std::vector<StripKinematics> result;
-  for (std::size_t k = 0; k < strips.size(); ++k) result.push_back({strips[k], d.du_dy[k], d.du_dy_error[k], d.plug[k] != 0.0});
+  for (std::size_t k = 0; k < strips.size(); ++k)
+    result.push_back({strips[k], d.du_dy[k], d.du_dy_error[k], d.plug[k] != 0.0});
   return result;
 }
 
@@ -211,10 +213,8 @@ void StripProfileObserver::write(const Frame&, OutputSink& out) {
   };
   column("strip", [](std::size_t k) { return static_cast<double>(k); });
   column("y", [&](std::size_t k) { return strips[k].centre; });
-  if (couette)
-    column("y_over_gap", [&](std::size_t k) { return strips[k].relative_centre; });
-  else if (chute_)
-    column("y_over_H", [&](std::size_t k) { return (strips[k].centre - bottom_) / d.depth; });
+  if (couette) column("y_over_gap", [&](std::size_t k) { return strips[k].relative_centre; });
+  else if (chute_) column("y_over_H", [&](std::size_t k) { return (strips[k].centre - bottom_) / d.depth; });
   average("solids_fraction", solids_fraction);
   average("particles", particles);
   average("u", u);
@@ -256,11 +256,12 @@ void StripProfileObserver::write(const Frame&, OutputSink& out) {
     if (couette) out << " between the walls, stretching with them";
     out << "\n";
     if (couette)
-      out << "# couette: mean gap H = " << d.gap << " m, U_T = " << d.speed << " m/s (top wall relative to bottom), (H/U_T)^2 = "
-          << d.scaling << " s^2\n";
+      out << "# couette: mean gap H = " << d.gap << " m, U_T = " << d.speed
+          << " m/s (top wall relative to bottom), (H/U_T)^2 = " << d.scaling << " s^2\n";
     if (chute_)
-      out << "# chute: flow depth H = " << d.depth << " m (twice the mass-mean height above the bottom at y = " << bottom_
-          << " m), mean velocity " << d.mean_velocity << " m/s, Fr = " << d.froude << "\n";
+      out << "# chute: flow depth H = " << d.depth
+          << " m (twice the mass-mean height above the bottom at y = " << bottom_ << " m), mean velocity "
+          << d.mean_velocity << " m/s, Fr = " << d.froude << "\n";
     out << "# packing limits of sheared discs (section 3.1.7): triangular " << kDiscTriangularPacking
         << ", contour-following " << kDiscContourShearPacking << ", square " << kDiscSquarePacking
         << "; spheres' simple cubic " << kSphereCubicPacking << "\n";

@@ -87,7 +87,8 @@ std::vector<TracerObserver::Row> TracerObserver::gathered_rows() const {
       all.push_back(std::move(r));
     }
   }
-  std::sort(all.begin(), all.end(), [](const Row& a, const Row& b) { return std::tie(a.sample, a.id) < std::tie(b.sample, b.id); });
+  std::sort(all.begin(), all.end(),
+            [](const Row& a, const Row& b) { return std::tie(a.sample, a.id) < std::tie(b.sample, b.id); });
   return all;
 }
 

@@ -5,7 +5,8 @@
 
 namespace grainflow::observe {
 
-TrajectorySampler::TrajectorySampler(std::vector<std::uint32_t> ids, double start, double window, long samples, Sink sink)
+TrajectorySampler::TrajectorySampler(std::vector<std::uint32_t> ids, double start, double window, long samples,
+                                     Sink sink)
     : ids_(std::move(ids)), start_(start), window_(window), samples_(samples), sink_(std::move(sink)) {
   std::uint32_t largest = 0;
   for (auto id : ids_) largest = std::max(largest, id);

@@ -21,7 +21,8 @@ class TrajectorySampler {
  public:
   // One finished window: its centre time, then velocity and unwrapped position of each tracked
   // particle (x, y, z per particle, in the order of `ids`).
-  using Sink = std::function<void(double time, const std::vector<double>& velocity, const std::vector<double>& position)>;
+  using Sink =
+      std::function<void(double time, const std::vector<double>& velocity, const std::vector<double>& position)>;
 
   TrajectorySampler(std::vector<std::uint32_t> ids, double start, double window, long samples, Sink sink);
 

@@ -94,7 +94,8 @@ double VelocityField::cell_mean_convection_speed(double min_visit_fraction) cons
   for (const FieldCell& c : all)
     if (c.visits > 0) visits += c.visits, ++visited;
   if (visited == 0) return 0.0;
-  const double threshold = std::max(1.0, min_visit_fraction * static_cast<double>(visits) / static_cast<double>(visited));
+  const double threshold =
+      std::max(1.0, min_visit_fraction * static_cast<double>(visits) / static_cast<double>(visited));
   double sum = 0.0;
   long counted = 0;
   for (const FieldCell& c : all)

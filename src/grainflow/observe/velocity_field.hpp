@@ -14,11 +14,11 @@
 namespace grainflow::observe {
 
 struct FieldCell {
-  int column = 0, row = 0;          // along the horizontal and the vertical axis
-  double horizontal = 0.0, vertical = 0.0;  // m, cell centre
-  long visits = 0;                  // particle centres counted
+  int column = 0, row = 0;                                    // along the horizontal and the vertical axis
+  double horizontal = 0.0, vertical = 0.0;                    // m, cell centre
+  long visits = 0;                                            // particle centres counted
   double velocity_horizontal = 0.0, velocity_vertical = 0.0;  // m/s, mean over visits
-  double speed() const;             // m/s, magnitude of the mean
+  double speed() const;                                       // m/s, magnitude of the mean
 };
 
 class VelocityField {

@@ -64,7 +64,8 @@ std::vector<WallLoad> WallLoads::averages() const {
     std::vector<double> normal, shear;
     const auto& blocks = blocks_.blocks();
     for (std::size_t b = 0; b < blocks.size(); ++b) {
-      const Vec3 row = row_of(static_cast<int>(w), (blocks[b][w].impulse + blocks[b][w].rolling) * (1.0 / blocks_.block_weights()[b]));
+      const Vec3 row = row_of(static_cast<int>(w),
+                              (blocks[b][w].impulse + blocks[b][w].rolling) * (1.0 / blocks_.block_weights()[b]));
       normal.push_back(row[n]);
       shear.push_back(row[f]);
     }

@@ -22,14 +22,14 @@ namespace grainflow::observe {
 struct WallLoad {
   double normal_stress = 0.0, normal_stress_error = 0.0;  // Pa (2D: N/m)
   double shear_stress = 0.0, shear_stress_error = 0.0;    // Pa (2D: N/m)
-  double friction = 0.0;                  // shear_stress / normal_stress
-  double impulse_angle_deg = 0.0;         // atan2(shear_stress, normal_stress), degrees
-  double rolling_normal_stress = 0.0;     // the parts of the stresses from particles rolling on the wall
+  double friction = 0.0;                                  // shear_stress / normal_stress
+  double impulse_angle_deg = 0.0;                         // atan2(shear_stress, normal_stress), degrees
+  double rolling_normal_stress = 0.0;  // the parts of the stresses from particles rolling on the wall
   double rolling_shear_stress = 0.0;
-  double collision_rate = 0.0;            // 1/(s m^(D-1))
-  double dissipation_rate = 0.0;          // W/m^(D-1)
+  double collision_rate = 0.0;    // 1/(s m^(D-1))
+  double dissipation_rate = 0.0;  // W/m^(D-1)
   long long collisions = 0;
-  Vec3 row;                               // P_ab at the wall, b = x, y, z
+  Vec3 row;  // P_ab at the wall, b = x, y, z
 };
 
 class WallLoads {
@@ -63,11 +63,11 @@ class WallLoads {
 
  private:
   struct Sums {
-    Vec3 impulse;            // kg m/s per m^(D-1): collisions' impulses on the particles / area
-    Vec3 rolling;            // the same from rolling particles
-    double collisions = 0.0; // per m^(D-1)
+    Vec3 impulse;             // kg m/s per m^(D-1): collisions' impulses on the particles / area
+    Vec3 rolling;             // the same from rolling particles
+    double collisions = 0.0;  // per m^(D-1)
     double count = 0.0;
-    double dissipated = 0.0; // J per m^(D-1)
+    double dissipated = 0.0;  // J per m^(D-1)
     Sums& operator+=(const Sums& o);
   };
   Vec3 row_of(int w, const Vec3& traction) const;

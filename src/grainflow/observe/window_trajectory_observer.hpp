@@ -35,7 +35,8 @@ class WindowTrajectoryObserver final : public Observer {
     if (file_) file_->copy_to(folder + "/checkpoint_trajectory.h5");
   }
   void resume_streams(const std::string& folder) override {
-    if (file_) io::resume_streams(folder + "/checkpoint_trajectory.h5", {&time_, &velocity_, &position_}, sampler_->taken());
+    if (file_)
+      io::resume_streams(folder + "/checkpoint_trajectory.h5", {&time_, &velocity_, &position_}, sampler_->taken());
   }
   void finish(OutputSink& out) override;
 

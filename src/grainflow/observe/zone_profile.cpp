@@ -80,7 +80,8 @@ std::vector<Vec3> ZoneProfile::instantaneous_mean_velocity(const ParticleStore& 
 
 std::vector<double> ZoneProfile::zone_centres() const {
   std::vector<double> centre(sums_.size());
-  for (std::size_t z = 0; z < centre.size(); ++z) centre[z] = 0.5 * (lo_ + z * thickness_ + std::min(hi_, lo_ + (z + 1) * thickness_));
+  for (std::size_t z = 0; z < centre.size(); ++z)
+    centre[z] = 0.5 * (lo_ + z * thickness_ + std::min(hi_, lo_ + (z + 1) * thickness_));
   return centre;
 }
 
@@ -149,7 +150,8 @@ std::vector<ZoneAverages> ZoneProfile::averages() const {
     a.mean_velocity = s.momentum * (1.0 / s.mass);
     a.temperature_lan = s.fluctuation_lan * (1.0 / s.mass);
     for (int axis = 0; axis < 3; ++axis)
-      a.temperature_time_mean[axis] = std::max(0.0, s.second_moment[axis] / s.mass - a.mean_velocity[axis] * a.mean_velocity[axis]);
+      a.temperature_time_mean[axis] =
+          std::max(0.0, s.second_moment[axis] / s.mass - a.mean_velocity[axis] * a.mean_velocity[axis]);
   }
   add_errors(out);
   return out;

@@ -20,7 +20,7 @@
 namespace grainflow::observe {
 
 struct ZoneAverages {
-  double lo = 0.0, hi = 0.0;            // m, zone bounds along the gravity axis
+  double lo = 0.0, hi = 0.0;  // m, zone bounds along the gravity axis
   double solids_fraction = 0.0;
   Vec3 mean_velocity;                   // m/s
   Vec3 temperature_lan;                 // m^2/s^2 per component
@@ -29,8 +29,8 @@ struct ZoneAverages {
   double mass = 0.0;                    // kg, mean over samples
   // Standard errors of the long-term averages (NaN until there are 2 kMinErrorBlocks full blocks).
   double solids_fraction_error = 0.0;
-  Vec3 mean_velocity_error;             // m/s
-  double temperature_lan_error = 0.0;   // m^2/s^2, of the total (mean of the three components)
+  Vec3 mean_velocity_error;            // m/s
+  double temperature_lan_error = 0.0;  // m^2/s^2, of the total (mean of the three components)
   double temperature_time_mean_error = 0.0;
 };
 
@@ -82,9 +82,9 @@ class ZoneProfile {
   };
   int axis_;
   int dimension_;
-  double lo_, hi_, thickness_;  // m; the last zone ends at hi_
-  double period_ = 0.0;          // m, hi_ - lo_ along a periodic axis; 0: not periodic
-  Vec3 image_velocity_;          // m/s, of the image one period above
+  double lo_, hi_, thickness_;       // m; the last zone ends at hi_
+  double period_ = 0.0;              // m, hi_ - lo_ along a periodic axis; 0: not periodic
+  Vec3 image_velocity_;              // m/s, of the image one period above
   std::vector<double> zone_volume_;  // m^3; the top zone may be cut by the domain's upper bound
   template <class Visit>
   void for_each_overlap(const ParticleStore& p, std::size_t i, Visit&& visit) const;

@@ -13,7 +13,8 @@ ZoneLayout::ZoneLayout(const RunContext& run) : axis(run.gravity_axis) {
   for (int a = 0; a < run.dimension; ++a)
     if (a != axis) area *= c.domain.length(a);
   lo = c.domain.lo[axis];
-  if (c.drive.enabled && c.drive.face == axis * 2) lo -= thickness * std::ceil(c.drive.amplitude[axis] / thickness - 1e-9);
+  if (c.drive.enabled && c.drive.face == axis * 2)
+    lo -= thickness * std::ceil(c.drive.amplitude[axis] / thickness - 1e-9);
   hi = c.domain.hi[axis];
 }
 
@@ -44,7 +45,8 @@ void ZoneProfileObserver::write(const Frame& last, OutputSink& out) {
            << " samples; temperature = about the instantaneous zone mean (Lan), temperature_time_mean = about the"
               " long-term zone mean (Campbell)\n";
       file << "# units: position m, Y 1 (position / d), velocities m/s, temperatures m^2/s^2, W 1 (sqrt(T/(g d))), "
-              "kinetic_energy_density J/m^" << run_.dimension << "; *_error: standard errors by block averaging (nan: too few samples)\n";
+              "kinetic_energy_density J/m^"
+           << run_.dimension << "; *_error: standard errors by block averaging (nan: too few samples)\n";
       file << "zone,position_lo,position_hi,position,Y,solids_fraction,mean_velocity_x,mean_velocity_y,mean_velocity_z,"
               "temperature_x,temperature_y,temperature_z,temperature,temperature_time_mean,W,kinetic_energy_density,"
               "solids_fraction_error,mean_velocity_y_error,temperature_error,temperature_time_mean_error,W_error\n";
@@ -57,20 +59,21 @@ void ZoneProfileObserver::write(const Frame& last, OutputSink& out) {
         const double w = g > 0.0 ? std::sqrt(t / (g * diameter)) : 0.0;
         // dW = dT / (2 sqrt(T g d)), first-order propagation.
         const double w_error = t > 0.0 && g > 0.0 ? a.temperature_lan_error / (2.0 * std::sqrt(t * g * diameter)) : NAN;
-        file << z << ',' << a.lo << ',' << a.hi << ',' << mid << ',' << mid / diameter << ',' << a.solids_fraction << ','
-             << a.mean_velocity.x << ',' << a.mean_velocity.y << ',' << a.mean_velocity.z << ',' << a.temperature_lan.x
-             << ',' << a.temperature_lan.y << ',' << a.temperature_lan.z << ',' << t << ',' << tm << ',' << w << ','
-             << a.kinetic_energy_density << ',' << a.solids_fraction_error << ',' << a.mean_velocity_error.y << ','
-             << a.temperature_lan_error << ',' << a.temperature_time_mean_error << ',' << w_error << '\n';
+        file << z << ',' << a.lo << ',' << a.hi << ',' << mid << ',' << mid / diameter << ',' << a.solids_fraction
+             << ',' << a.mean_velocity.x << ',' << a.mean_velocity.y << ',' << a.mean_velocity.z << ','
+             << a.temperature_lan.x << ',' << a.temperature_lan.y << ',' << a.temperature_lan.z << ',' << t << ',' << tm
+             << ',' << w << ',' << a.kinetic_energy_density << ',' << a.solids_fraction_error << ','
+             << a.mean_velocity_error.y << ',' << a.temperature_lan_error << ',' << a.temperature_time_mean_error << ','
+             << w_error << '\n';
       }
     });
   out.summary->integer("profile_samples", profile_.samples());
   // Height of the long-term density peak above the floor's rest position, in diameters (Fig. A4.8).
   if (!zones.empty() && profile_.samples() > 0) {
-    const auto peak = std::max_element(zones.begin(), zones.end(), [](const auto& a, const auto& b) {
-      return a.solids_fraction < b.solids_fraction;
-    });
-    out.summary->number("density_peak_Y", (0.5 * (peak->lo + peak->hi) - run_.c->domain.lo[run_.gravity_axis]) / diameter);
+    const auto peak = std::max_element(
+        zones.begin(), zones.end(), [](const auto& a, const auto& b) { return a.solids_fraction < b.solids_fraction; });
+    out.summary->number("density_peak_Y",
+                        (0.5 * (peak->lo + peak->hi) - run_.c->domain.lo[run_.gravity_axis]) / diameter);
   }
 }
 

@@ -41,12 +41,10 @@ void check_table(const ObserverParameters& table, const ObserverCheckInputs& run
 
 }  // namespace
 
-const ObserverSchema ZoneSeriesObserver::table = {"zone_series", "dem",
-                                                  "zone velocity histories are implemented for the DEM engine only",
-                                                  &read_table, &check_table};
+const ObserverSchema ZoneSeriesObserver::table = {
+    "zone_series", "dem", "zone velocity histories are implemented for the DEM engine only", &read_table, &check_table};
 
-ZoneSeriesObserver::ZoneSeriesObserver(const RunContext& run)
-    : c_(*run.c), zones_(ZoneLayout(run).profile(run)) {
+ZoneSeriesObserver::ZoneSeriesObserver(const RunContext& run) : c_(*run.c), zones_(ZoneLayout(run).profile(run)) {
   const CaseConfig& c = c_;
   const ObserverParameters& t = c.observer_tables.at(table.table);
   requested_ = t.integer("samples");
@@ -57,7 +55,8 @@ ZoneSeriesObserver::ZoneSeriesObserver(const RunContext& run)
   file_.emplace(run.directory + "/zone_series.h5");
   const auto centres = zones_.zone_centres();
   file_->write("/zone_centre", centres, {centres.size()});
-  write_run_attributes(*file_, run, start_, "time s, zone_velocity m/s, floor_position m, floor_velocity m/s, zone_centre m");
+  write_run_attributes(*file_, run, start_,
+                       "time s, zone_velocity m/s, floor_position m, floor_velocity m/s, zone_centre m");
   file_->attribute("/", "interval", interval_);
   file_->attribute("/", "drive_frequency", f);
   time_ = file_->growing("/time", {}, 1024);

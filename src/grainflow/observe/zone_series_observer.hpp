@@ -31,14 +31,15 @@ class ZoneSeriesObserver final : public Observer {
   }
   void resume_streams(const std::string& folder) override {
     if (file_)
-      io::resume_streams(folder + "/checkpoint_zone_series.h5", {&time_, &zone_velocity_, &floor_position_, &floor_velocity_},
+      io::resume_streams(folder + "/checkpoint_zone_series.h5",
+                         {&time_, &zone_velocity_, &floor_position_, &floor_velocity_},
                          static_cast<std::size_t>(taken_));
   }
   void finish(OutputSink& out) override;
 
  private:
   const CaseConfig& c_;
-  ZoneProfile zones_;  // their geometry; nothing accumulated
+  ZoneProfile zones_;                 // their geometry; nothing accumulated
   std::optional<io::H5Writer> file_;  // rank 0's
   io::GrowingDataset time_, zone_velocity_, floor_position_, floor_velocity_;
   double start_ = 0.0, interval_ = 0.0;

@@ -89,7 +89,8 @@ double Communicator::sum(double local) const { return local; }
 void Communicator::sum_in_place(double*, std::size_t) const {}
 #endif
 
-std::vector<std::vector<std::uint8_t>> Communicator::exchange(const std::vector<std::vector<std::uint8_t>>& outgoing) const {
+std::vector<std::vector<std::uint8_t>> Communicator::exchange(
+    const std::vector<std::vector<std::uint8_t>>& outgoing) const {
   if (static_cast<int>(outgoing.size()) != size_) throw std::logic_error("Communicator::exchange: one buffer per rank");
   std::vector<std::vector<std::uint8_t>> incoming(size_);
 #ifdef GRAINFLOW_HAVE_MPI
@@ -108,7 +109,8 @@ std::vector<std::vector<std::uint8_t>> Communicator::exchange(const std::vector<
     MPI_Alltoallv(send.data(), send_counts.data(), send_offsets.data(), MPI_BYTE, receive.data(), receive_counts.data(),
                   receive_offsets.data(), MPI_BYTE, MPI_COMM_WORLD);
     for (int r = 0; r < size_; ++r)
-      incoming[r].assign(receive.begin() + receive_offsets[r], receive.begin() + receive_offsets[r] + receive_counts[r]);
+      incoming[r].assign(receive.begin() + receive_offsets[r],
+                         receive.begin() + receive_offsets[r] + receive_counts[r]);
     return incoming;
   }
 #endif
@@ -119,7 +121,8 @@ std::vector<std::vector<std::uint8_t>> Communicator::exchange(const std::vector<
 std::vector<std::vector<std::uint8_t>> Communicator::exchange_with(
     const std::vector<int>& partners, const std::vector<std::vector<std::uint8_t>>& outgoing,
     const std::vector<std::size_t>* expected) const {
-  if (static_cast<int>(outgoing.size()) != size_) throw std::logic_error("Communicator::exchange_with: one buffer per rank");
+  if (static_cast<int>(outgoing.size()) != size_)
+    throw std::logic_error("Communicator::exchange_with: one buffer per rank");
   std::vector<std::vector<std::uint8_t>> incoming(size_);
 #ifdef GRAINFLOW_HAVE_MPI
   if (size_ > 1) {
@@ -180,7 +183,8 @@ std::vector<std::vector<std::uint8_t>> Communicator::gather(const std::vector<st
       }
     } else {
       for (unsigned long long at = 0; at < count; at += kPiece)
-        MPI_Send(mine.data() + at, static_cast<int>(std::min(kPiece, count - at)), MPI_BYTE, 0, kGatherTag, MPI_COMM_WORLD);
+        MPI_Send(mine.data() + at, static_cast<int>(std::min(kPiece, count - at)), MPI_BYTE, 0, kGatherTag,
+                 MPI_COMM_WORLD);
     }
     return out;
   }

@@ -21,7 +21,7 @@ class Communicator {
   int size() const { return size_; }
   bool root() const { return rank_ == 0; }
 
-  bool any(bool local) const;                  // logical OR over the ranks
+  bool any(bool local) const;  // logical OR over the ranks
   double max(double local) const;
   long long sum(long long local) const;
   double sum(double local) const;

@@ -32,8 +32,22 @@ void ParticleStore::resize(std::size_t n) {
 }
 
 ParticleStore::Record ParticleStore::record(std::size_t i) const {
-  return Record{position[i], velocity[i], angular_velocity[i], force[i], torque[i], radius[i], target_radius[i],
-                inv_mass[i], inv_inertia[i], mass[i], image[i], species[i], id[i], motion[i], wall[i], ghost[i]};
+  return Record{position[i],
+                velocity[i],
+                angular_velocity[i],
+                force[i],
+                torque[i],
+                radius[i],
+                target_radius[i],
+                inv_mass[i],
+                inv_inertia[i],
+                mass[i],
+                image[i],
+                species[i],
+                id[i],
+                motion[i],
+                wall[i],
+                ghost[i]};
 }
 
 void ParticleStore::push_back(const Record& r) {

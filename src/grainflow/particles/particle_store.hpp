@@ -27,9 +27,9 @@ struct ParticleStore {
   std::vector<std::int32_t> species;
   std::vector<std::uint32_t> id;
   std::vector<Motion> motion;
-  std::vector<std::int8_t> wall;             // face index that carries a bump, -1 otherwise
+  std::vector<std::int8_t> wall;                   // face index that carries a bump, -1 otherwise
   std::vector<std::array<std::int32_t, 3>> image;  // periodic box crossings, for unwrapped positions
-  std::vector<std::uint8_t> ghost;           // 1: a copy of another MPI rank's particle (not integrated here)
+  std::vector<std::uint8_t> ghost;                 // 1: a copy of another MPI rank's particle (not integrated here)
 
   std::size_t size() const { return position.size(); }
   void resize(std::size_t n);

@@ -139,7 +139,8 @@ CalibrationRun::CalibrationRun(const CalibrationOptions& options) : o(options) {
   if (!probe_derived.calibrated_by_stiffness)
     throw InputError(o.case_path, "contact.model",
                      "calibrate chooses the loading stiffness of a law whose restitution does not change with it "
-                     "(Lan 1994 section 4.1.3: " + calibrated_law_names() + "); contact.model = \"" + probe.contact.model +
+                     "(Lan 1994 section 4.1.3: " +
+                         calibrated_law_names() + "); contact.model = \"" + probe.contact.model +
                          "\" is not supported");
   stiffness_key = "contact." + probe_derived.stiffness_key;
   hertz_k1 = probe_derived.hertz_k1;
@@ -168,7 +169,8 @@ void CalibrationRun::choose_start(const SpeciesConfig& reference) {
   } else {
     throw InputError(o.case_path, "species.youngs_modulus",
                      "calibrate needs a starting K1: give --start-k1 K (N/m), or youngs_modulus (and poisson_ratio) "
-                     "for species '" + reference.name +
+                     "for species '" +
+                         reference.name +
                          "' in a case with a [drive], so that Lan's start, the Hertz-equivalent K1 / 100, is known");
   }
 }
@@ -193,13 +195,15 @@ void CalibrationRun::warn_of_the_case() {
     warnings.push_back("run.time_step = " + fmt::format("{:.6g}", probe.run.time_step) +
                        " s is fixed by the case, so the time step does not follow K1 (eq. 2-5-4 would)");
   if (probe.drive.enabled && duration < probe.drive.start + probe.drive.ramp)
-    warnings.push_back(fmt::format("the trials end at {:.6g} s, before the drive reaches its full amplitude at "
-                                   "drive.start + drive.ramp = {:.6g} s: the hardest impacts may be missed",
-                                   duration, probe.drive.start + probe.drive.ramp));
+    warnings.push_back(
+        fmt::format("the trials end at {:.6g} s, before the drive reaches its full amplitude at "
+                    "drive.start + drive.ramp = {:.6g} s: the hardest impacts may be missed",
+                    duration, probe.drive.start + probe.drive.ramp));
   if (probe.particles.init == "random" && duration <= expansion_time)
-    warnings.push_back(fmt::format("the trials end within the radius expansion (particles.expansion_time = {:.6g} s), "
-                                   "which the overlap monitor ignores: every trial will pass",
-                                   expansion_time));
+    warnings.push_back(
+        fmt::format("the trials end within the radius expansion (particles.expansion_time = {:.6g} s), "
+                    "which the overlap monitor ignores: every trial will pass",
+                    expansion_time));
   for (const auto& w : warnings) std::cerr << "grainflow: warning: " << w << "\n";
 }
 
@@ -244,9 +248,10 @@ double CalibrationRun::measure(double k1) {
   // (summary.json's 10 digits may round it onto the limit).
   r.halted = status != 0;
   if (r.halted && r.max_overlap < o.limit * (1.0 - 1e-8))
-    throw RunError(fmt::format("trial {} (K1 = {:.6g} N/m) failed with the overlap within the limit: see the errors "
-                               "in {}",
-                               records.size() + 1, k1, summary_path));
+    throw RunError(
+        fmt::format("trial {} (K1 = {:.6g} N/m) failed with the overlap within the limit: see the errors "
+                    "in {}",
+                    records.size() + 1, k1, summary_path));
   r.passed = !r.halted;
   std::cout << fmt::format("{:>5}  {:>12.6g}  {:>13.4g}  {:>13.4g}  {:>13}  {:>6}  {:>8.3g}\n", records.size() + 1,
                            r.k1, r.time_step, r.max_overlap,
@@ -255,9 +260,10 @@ double CalibrationRun::measure(double k1) {
             << std::flush;
   records.push_back(r);
   if (records.size() == 1 && r.passed) {
-    warnings.push_back(fmt::format("the start K1 = {:.6g} N/m already keeps the overlap within the limit (Lan starts "
-                                   "below and increases K1): stepping down by the factor to the smallest passing K1",
-                                   r.k1));
+    warnings.push_back(
+        fmt::format("the start K1 = {:.6g} N/m already keeps the overlap within the limit (Lan starts "
+                    "below and increases K1): stepping down by the factor to the smallest passing K1",
+                    r.k1));
     std::cerr << "grainflow: warning: " << warnings.back() << "\n";
   }
   // The search compares with the limit: keep the verdict of the run's own monitor.
@@ -281,16 +287,18 @@ int CalibrationRun::run() {
     for (const auto& r : records)
       if (!r.passed && r.k1 < chosen->k1 && (!below || r.k1 > below->k1)) below = &r;
   if (result.descended && !result.bracketed) {
-    warnings.push_back(fmt::format("no trial down to K1 = {:.6g} N/m exceeded the limit within --max-trials = {}: "
-                                   "the answer is not bracketed (raise --max-trials or --factor, or lower --start-k1)",
-                                   records.back().k1, o.max_trials));
+    warnings.push_back(
+        fmt::format("no trial down to K1 = {:.6g} N/m exceeded the limit within --max-trials = {}: "
+                    "the answer is not bracketed (raise --max-trials or --factor, or lower --start-k1)",
+                    records.back().k1, o.max_trials));
     std::cerr << "grainflow: warning: " << warnings.back() << "\n";
   }
   std::vector<std::string> errors;
   if (!chosen)
-    errors.push_back(fmt::format("no trial up to K1 = {:.6g} N/m kept the max overlap within {:.6g} d in --max-trials "
-                                 "= {} trials (raise --max-trials or --factor, or --start-k1)",
-                                 records.back().k1, o.limit, o.max_trials));
+    errors.push_back(
+        fmt::format("no trial up to K1 = {:.6g} N/m kept the max overlap within {:.6g} d in --max-trials "
+                    "= {} trials (raise --max-trials or --factor, or --start-k1)",
+                    records.back().k1, o.limit, o.max_trials));
   write_records(result, chosen, below, errors, wall_seconds);
   if (!chosen) {
     std::cerr << "grainflow: calibration failed: " << errors.front() << "\n";
@@ -342,14 +350,12 @@ void CalibrationRun::write_records(const StiffnessSearchResult& result, const Tr
   json.strings("errors", errors);
   json.strings("warnings", warnings);
   io::write_atomically((dir / "calibration.json").string(), [&](std::ostream& out) { json.write(out); });
-
 }
 
 void CalibrationRun::print_answer(const TrialRecord& chosen, const TrialRecord* below, double wall_seconds) const {
   std::cout << fmt::format("\nK1 = {:.6g} N/m: max overlap {:.4g} d <= {:.6g} d", chosen.k1, chosen.max_overlap,
                            o.limit);
-  if (below)
-    std::cout << fmt::format("; K1 = {:.6g} N/m exceeded it ({:.4g} d)", below->k1, below->max_overlap);
+  if (below) std::cout << fmt::format("; K1 = {:.6g} N/m exceeded it ({:.4g} d)", below->k1, below->max_overlap);
   std::cout << fmt::format("\ntime step {:.6g} s{}\n", chosen.time_step,
                            probe.run.time_step > 0.0 ? " (run.time_step of the case)" : " (eq. 2-5-4)");
   if (hertz_k1)

@@ -24,7 +24,7 @@ struct CalibrationOptions {
   std::optional<double> start_k1;      // N/m; default: Hertz-equivalent K1 / 100
   int max_trials = 20;
   int threads = 1;
-  bool quiet = false;                  // no progress lines of the trial runs
+  bool quiet = false;  // no progress lines of the trial runs
 };
 
 // Runs the calibration. Returns 0 when a passing K1 was found, 1 when none was within max_trials

@@ -8,5 +8,4 @@ namespace grainflow {
 
 void validate_case(const CaseConfig& c);
 
-
 }  // namespace grainflow

@@ -30,9 +30,10 @@ io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long l
   // portable state, which DEM checkpoints hold.
   const bool exact = header.ranks == comm.size();
   if (!exact && c.engine.kind == "dem" && !io::has_portable_state(path))
-    throw InputError(path, "", "this checkpoint was written by " + std::to_string(header.ranks) +
-                                   " MPI rank(s) without a portable state (an older version): continue on " +
-                                   std::to_string(header.ranks));
+    throw InputError(path, "",
+                     "this checkpoint was written by " + std::to_string(header.ranks) +
+                         " MPI rank(s) without a portable state (an older version): continue on " +
+                         std::to_string(header.ranks));
   io::Checkpoint checkpoint = io::read_checkpoint(path, exact ? comm.rank() : io::kPortable);
   const auto& h = checkpoint.header;
   auto refuse = [&](const std::string& what) {
@@ -44,10 +45,11 @@ io::Checkpoint read_restart(const std::string& path, const CaseConfig& c, long l
   if (h.particles != particles)
     refuse("it holds " + std::to_string(h.particles) + " particles, the case makes " + std::to_string(particles));
   if (h.ranks != comm.size() && c.engine.kind != "dem")
-    refuse("it was written by " + std::to_string(h.ranks) + " MPI rank(s), this run has " + std::to_string(comm.size()));
+    refuse("it was written by " + std::to_string(h.ranks) + " MPI rank(s), this run has " +
+           std::to_string(comm.size()));
   if (h.time > c.run.duration)
-    refuse("it is at t = " + std::to_string(h.time) + ", past the case's run.duration = " + std::to_string(c.run.duration) +
-           " (raise it with --set run.duration=...)");
+    refuse("it is at t = " + std::to_string(h.time) + ", past the case's run.duration = " +
+           std::to_string(c.run.duration) + " (raise it with --set run.duration=...)");
   return checkpoint;
 }
 

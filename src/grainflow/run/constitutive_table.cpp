@@ -18,8 +18,8 @@ namespace fs = std::filesystem;
 constexpr const char* kRunFile = "constitutive.csv";
 
 struct RunTable {
-  std::string run;                   // the run's folder, relative to the folder named
-  bool steady = false;               // summary.json's averaged_when_steady
+  std::string run;                    // the run's folder, relative to the folder named
+  bool steady = false;                // summary.json's averaged_when_steady
   std::vector<std::string> comments;  // '#' lines
   std::string header;
   std::vector<std::string> rows;
@@ -79,7 +79,9 @@ std::vector<RunTable> find_tables(const std::string& folder, const fs::path& out
     if (!fs::exists(output) || !fs::equivalent(file, output))
       tables.push_back(read_run_table(file, run_label(root, file.parent_path())));
   if (tables.empty())
-    throw InputError(folder, "", std::string("holds no ") + kRunFile + " (event-driven runs write one when output.collision_stresses is on)");
+    throw InputError(
+        folder, "",
+        std::string("holds no ") + kRunFile + " (event-driven runs write one when output.collision_stresses is on)");
   return tables;
 }
 
@@ -112,15 +114,18 @@ int collect_constitutive(const ConstitutiveOptions& options) {
   const std::string& header = tables.front().header;
   for (const auto& t : tables)
     if (t.header != header)
-      throw InputError(t.run + "/" + kRunFile, "", "its columns differ from " + tables.front().run + "/" + kRunFile +
-                                                       "'s (written by another grainflow version?); rerun it");
+      throw InputError(t.run + "/" + kRunFile, "",
+                       "its columns differ from " + tables.front().run + "/" + kRunFile +
+                           "'s (written by another grainflow version?); rerun it");
   const int usable_chi = column_index(header, "usable_chi"), usable_f = column_index(header, "usable_f");
   long rows = 0, chi_rows = 0, f_rows = 0, steady_runs = 0;
   for (const auto& t : tables) steady_runs += t.steady;
   io::write_atomically(output.string(), [&](std::ostream& out) {
-    out << "# Campbell 1982 constitutive functions collected over " << tables.size() << " runs (grainflow constitutive)\n";
+    out << "# Campbell 1982 constitutive functions collected over " << tables.size()
+        << " runs (grainflow constitutive)\n";
     for (const auto& comment : tables.front().comments)
-      if (comment.rfind("# constitutive functions per strip", 0) != 0) out << comment << "\n";  // rho_p, R differ per run
+      if (comment.rfind("# constitutive functions per strip", 0) != 0)
+        out << comment << "\n";  // rho_p, R differ per run
     out << "# steady: 1 when the run's averages began after its kinetic energy had become steady "
            "(summary.json averaged_when_steady, Campbell's section 2.5); figures use those runs only\n";
     out << "run,steady," << header << "\n";
@@ -132,8 +137,9 @@ int collect_constitutive(const ConstitutiveOptions& options) {
         f_rows += t.steady && flag_set(row, usable_f);
       }
   });
-  std::cout << "wrote " << output.string() << ": " << rows << " strips from " << tables.size() << " runs, " << steady_runs
-            << " of them averaged when steady; their strips usable for chi: " << chi_rows << ", for f_s and f_N: " << f_rows << "\n";
+  std::cout << "wrote " << output.string() << ": " << rows << " strips from " << tables.size() << " runs, "
+            << steady_runs << " of them averaged when steady; their strips usable for chi: " << chi_rows
+            << ", for f_s and f_N: " << f_rows << "\n";
   return 0;
 }
 

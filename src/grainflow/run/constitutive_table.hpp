@@ -1,8 +1,8 @@
 // `grainflow constitutive FOLDER... [-o FILE]`: Campbell's (1982) constitutive functions chi(nu),
 // f_s(nu), f_N(nu) "collected over strips and runs" into one table: every constitutive.csv found
 // under the folders (event-driven runs and sweeps), one row per strip, with the run's folder as the
-// first column and whether its averages began once the flow was steady (its summary.json) second. `grainflow plot` draws the table beside the elastic-gas equation of state and the
-// packing limits (Figs. 3.5, 3.21-3.24).
+// first column and whether its averages began once the flow was steady (its summary.json) second. `grainflow plot`
+// draws the table beside the elastic-gas equation of state and the packing limits (Figs. 3.5, 3.21-3.24).
 #pragma once
 
 #include <string>

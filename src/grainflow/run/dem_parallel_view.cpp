@@ -42,8 +42,9 @@ ParticleStore gather_particles(const ParticleStore& p, const parallel::Communica
   mine.reserve(p.size() * sizeof(OutputRecord));
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.ghost[i]) continue;
-    const OutputRecord r{p.position[i], p.velocity[i], p.angular_velocity[i], p.radius[i], p.target_radius[i],
-                         p.species[i], p.id[i], p.motion[i]};
+    const OutputRecord r{p.position[i], p.velocity[i],      p.angular_velocity[i],
+                         p.radius[i],   p.target_radius[i], p.species[i],
+                         p.id[i],       p.motion[i]};
     const auto* bytes = reinterpret_cast<const std::uint8_t*>(&r);
     mine.insert(mine.end(), bytes, bytes + sizeof r);
   }

@@ -25,7 +25,8 @@ void write_portable_engine(io::StateArchive& ar, const Engine& e, const parallel
     mine(particles, contacts);
     auto shares = comm.gather(mine.bytes());
     for (std::size_t r = 0; r < shares.size(); ++r) {  // rank 0 only: the others got none
-      io::StateArchive in = io::StateArchive::for_reading(std::move(shares[r]), "rank " + std::to_string(r) + "'s share");
+      io::StateArchive in =
+          io::StateArchive::for_reading(std::move(shares[r]), "rank " + std::to_string(r) + "'s share");
       dem::PortableParticles theirs;
       typename Engine::Portable their_contacts;
       in(theirs, their_contacts);
@@ -61,7 +62,8 @@ inline void read_portable_particles(io::StateArchive& ar, dem::PortableParticles
 
 // After: the contact memory, the last forces and the counters (`totals_here`: on one rank).
 template <class Engine>
-void read_portable_contacts(io::StateArchive& ar, Engine& e, const dem::PortableParticles& particles, bool totals_here) {
+void read_portable_contacts(io::StateArchive& ar, Engine& e, const dem::PortableParticles& particles,
+                            bool totals_here) {
   typename Engine::Portable contacts;
   ar(contacts);
   e.restore_portable(particles, contacts, totals_here);

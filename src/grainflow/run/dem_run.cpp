@@ -57,21 +57,34 @@ class DemRun {
   int run();
 
  private:
-  template <class E> void transfer(io::StateArchive& ar, E& e);
-  template <class E> void portable_run(io::StateArchive& ar, E& e);
-  template <class E> void restore_portable_run(io::StateArchive& ar, E& e);
-  template <class E> void checkpoint(E& e);
-  template <class E> const ParticleStore& all_particles(E& e);
-  template <class E> void record(E& e);
-  template <class E> void start(E& e);
-  template <class E> void step_loop(E& e);
+  template <class E>
+  void transfer(io::StateArchive& ar, E& e);
+  template <class E>
+  void portable_run(io::StateArchive& ar, E& e);
+  template <class E>
+  void restore_portable_run(io::StateArchive& ar, E& e);
+  template <class E>
+  void checkpoint(E& e);
+  template <class E>
+  const ParticleStore& all_particles(E& e);
+  template <class E>
+  void record(E& e);
+  template <class E>
+  void start(E& e);
+  template <class E>
+  void step_loop(E& e);
   void handle_failure_outside_loop();
-  template <class E> void bind_frame(E& e);
-  template <class E> const observe::Frame& frame_now(E& e);
-  template <class E> void write_outputs(E& e);
-  template <class E> std::pair<engine_api::EnergyBudget, double> global_energy_budget(const E& e) const;
-  template <class E> void write_summary(E& e, long long moving, const observe::GlobalSample& global,
-                                        long long migrations, long long ghosts);
+  template <class E>
+  void bind_frame(E& e);
+  template <class E>
+  const observe::Frame& frame_now(E& e);
+  template <class E>
+  void write_outputs(E& e);
+  template <class E>
+  std::pair<engine_api::EnergyBudget, double> global_energy_budget(const E& e) const;
+  template <class E>
+  void write_summary(E& e, long long moving, const observe::GlobalSample& global, long long migrations,
+                     long long ghosts);
   void snapshot(const dem::DemState& st);
 
   const CaseConfig& c;
@@ -117,9 +130,9 @@ class DemRun {
   double wall_seconds = 0.0;  // to the end of the loop, before the outputs are written
   double max_overlap_seen = 0.0;
   engine_api::EnergyBudget final_budget;  // at the end, over all ranks
-  double final_budget_scale = 0.0;  // J, the starting energy (the residual's fallback scale)
+  double final_budget_scale = 0.0;        // J, the starting energy (the residual's fallback scale)
   int exit_status = 0;
-  long first_step = 0;  // steps before this process's (a restart's checkpoint)
+  long first_step = 0;     // steps before this process's (a restart's checkpoint)
   ParticleStore gathered;  // rank 0: all particles (final_state.csv, a checkpoint's datasets)
   int interrupted = 0;
   bool stopped_together = false;  // MPI: a failure every rank saw at the same output time
@@ -138,8 +151,9 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   particle_count = static_cast<long long>(initial.particles.size());
   if (!options.restart.empty()) restart = read_restart(options.restart, c, particle_count, comm);
   if (restart && restart->portable && c.servo.enabled)  // the portable state has no walls' servo state
-    throw InputError(c.path, "servo", "a run with pressure-controlled walls restarts on as many MPI ranks as wrote " +
-                                          options.restart + " (" + std::to_string(restart->header.ranks) + ")");
+    throw InputError(c.path, "servo",
+                     "a run with pressure-controlled walls restarts on as many MPI ranks as wrote " + options.restart +
+                         " (" + std::to_string(restart->header.ranks) + ")");
   if (restart && restart->portable) {
     portable_restart.emplace(io::StateArchive::for_reading(restart->state, options.restart));
     portable_restart->tag("portable dem run with observers");
@@ -156,8 +170,9 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   axis = derived.gravity_axis;
   total_steps = static_cast<long>(std::llround(c.run.duration / dt));
 
-  context = observe::RunContext{&c, c.engine.dimension, axis, derived.reference_diameter, dt, derived.restitution, dir, writes,
-                                rank_reduce, &comm};
+  context =
+      observe::RunContext{&c,     c.engine.dimension, axis, derived.reference_diameter, dt, derived.restitution, dir,
+                          writes, rank_reduce,        &comm};
   const observe::ZoneLayout zones(context);
   area = zones.area;
   zones_now.emplace(zones.profile(context));
@@ -166,7 +181,8 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   sink = observe::OutputSink{dir, writes, &summary, &warnings};
 
   if (ranks) domain = dem::EngineDomain{&comm, dem_grid(initial, comm.size())};
-  engine.reset(new dem::DemEngineVariant(dem::make_engine(c, std::move(initial), options.threads, domain ? &*domain : nullptr)));
+  engine.reset(
+      new dem::DemEngineVariant(dem::make_engine(c, std::move(initial), options.threads, domain ? &*domain : nullptr)));
 
   bed_thresholds = observe::BedSurfaceThresholds{c.output.bed_gap_fraction, c.output.bed_surface_fraction};
   floor_below = c.gravity[axis] < 0.0;
@@ -257,8 +273,9 @@ void DemRun::checkpoint(E& e) {
   for (auto& o : observers) o->save_streams(dir);
   io::StateArchive portable = io::StateArchive::for_writing();
   portable_run(portable, e);
-  write_run_checkpoint(dir, c, all_particles(e), e.state().time, e.state().step,
-                       [&](io::StateArchive& ar) { transfer(ar, e); }, comm, portable.bytes());
+  write_run_checkpoint(
+      dir, c, all_particles(e), e.state().time, e.state().step, [&](io::StateArchive& ar) { transfer(ar, e); }, comm,
+      portable.bytes());
   gathered = ParticleStore{};
 }
 
@@ -292,8 +309,9 @@ void DemRun::record(E& e) {
   row.collisions = stats.collisions;
   row.wall_collisions = stats.wall_collisions;
   if (floor_below)
-    row.bed = observe::measure_bed_surface(st.particles, st.dimension, axis, observe::floor_position(frame.walls, c, axis), area,
-                                           derived.reference_diameter, bed_thresholds, rank_reduce);
+    row.bed =
+        observe::measure_bed_surface(st.particles, st.dimension, axis, observe::floor_position(frame.walls, c, axis),
+                                     area, derived.reference_diameter, bed_thresholds, rank_reduce);
   row.zone_temperature = zones_now->instantaneous_temperature(st.particles);
   const auto [budget, start_energy] = global_energy_budget(e);
   row.budget = budget;
@@ -346,7 +364,8 @@ void DemRun::step_loop(E& e) {
     if (interrupted != 0) break;
     e.step();
     // The schedules are the same on every rank, so all refresh together.
-    if (ranks && std::any_of(observers.begin(), observers.end(), [&](const auto& o) { return o->reads_contact_forces_at(step); }))
+    if (ranks && std::any_of(observers.begin(), observers.end(),
+                             [&](const auto& o) { return o->reads_contact_forces_at(step); }))
       e.refresh_ghosts();
     const observe::Frame& now = frame_now(e);
     for (auto& o : observers) o->sample(now);
@@ -416,8 +435,8 @@ int DemRun::run() {
 template <class E>
 std::pair<engine_api::EnergyBudget, double> DemRun::global_energy_budget(const E& e) const {
   engine_api::EnergyBudget b = e.energy_budget();
-  double* parts[] = {&b.gravity_work, &b.wall_work, &b.boundary_work, &b.growth_work, &b.separation_work, &b.change,
-                     &b.dissipated};
+  double* parts[] = {&b.gravity_work,    &b.wall_work, &b.boundary_work, &b.growth_work,
+                     &b.separation_work, &b.change,    &b.dissipated};
   double sums[std::size(parts) + 1];
   for (std::size_t k = 0; k < std::size(parts); ++k) sums[k] = *parts[k];
   sums[std::size(parts)] = e.energy_tally().start_energy;
@@ -441,7 +460,7 @@ void DemRun::write_outputs(E& e) {
   final_budget = budget;
   final_budget_scale = start_energy;
   for (auto& o : observers) o->write(last, sink);  // collective: rank 0 writes
-  if (!writes) return;  // rank 0 writes the run's other files
+  if (!writes) return;                             // rank 0 writes the run's other files
   write_timeseries(dir + "/timeseries.csv", rows, c.servo.enabled);
   write_final_state(dir + "/final_state.csv", everyone, st.species);
   write_summary(e, moving, global, migrations, ghosts);
@@ -521,7 +540,8 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
         series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.bulk_solids_fraction; }));
   }
   // Collisions per particle: contacts begun within the averaging window, per moving particle.
-  const auto first = std::find_if(rows.begin(), rows.end(), [&](const TimeseriesRow& r) { return r.time >= from - 1e-12; });
+  const auto first =
+      std::find_if(rows.begin(), rows.end(), [&](const TimeseriesRow& r) { return r.time >= from - 1e-12; });
   if (first != rows.end() && moving > 0 && rows.back().time > first->time) {
     const double span = rows.back().time - first->time;
     const double begun = 2.0 * static_cast<double>(rows.back().collisions - first->collisions);  // two partners each
@@ -534,8 +554,9 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
     // Radius expansion (section 2.2): how long it took, and the kinetic energy left when the radii
     // reached full size (the first row from then), which growth must not have pumped up.
     summary.number("expansion_time", derived.expansion_time);
-    const auto grown = std::find_if(rows.begin(), rows.end(),
-                                    [&](const TimeseriesRow& r) { return r.time >= derived.expansion_time * (1.0 - 1e-12); });
+    const auto grown = std::find_if(rows.begin(), rows.end(), [&](const TimeseriesRow& r) {
+      return r.time >= derived.expansion_time * (1.0 - 1e-12);
+    });
     if (grown != rows.end())
       summary.number("expansion_end_kinetic_energy", grown->global.kinetic_energy + grown->global.rotational_energy);
   }

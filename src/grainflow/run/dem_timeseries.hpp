@@ -21,11 +21,11 @@ struct TimeseriesRow {
   double floor_position, floor_velocity, max_overlap_ratio;
   long contacts, wall_contacts, rebuilds;
   observe::BedSurface bed;
-  double zone_temperature;         // eq. (3-1-9)'s zone temperatures, about each zone's instantaneous mean, over the bed
+  double zone_temperature;  // eq. (3-1-9)'s zone temperatures, about each zone's instantaneous mean, over the bed
   long collisions, wall_collisions;  // contacts begun since the start
-  engine_api::EnergyBudget budget;      // since the start, over all ranks
+  engine_api::EnergyBudget budget;   // since the start, over all ranks
   double budget_residual;
-  CouetteServoState servo;           // the Couette servo's gap and last update, when it runs
+  CouetteServoState servo;  // the Couette servo's gap and last update, when it runs
 };
 
 void write_timeseries(const std::string& path, const std::vector<TimeseriesRow>& rows, bool servo);

@@ -62,14 +62,15 @@ void analyze_distributions(const std::string& output_directory, const AnalyzeOpt
     throw InputError(file.string(), "samples", "holds no samples: the run ended before trajectory.start");
   if (options.first_strip >= s.strip_count || (options.last_strip >= 0 && options.last_strip < options.first_strip) ||
       options.last_strip >= s.strip_count)
-    throw InputError(file.string(), "--strips", "must name strips in [0, " + std::to_string(s.strip_count - 1) +
-                                                    "], first <= last (the run has " + std::to_string(s.strip_count) +
-                                                    " strips)");
+    throw InputError(file.string(), "--strips",
+                     "must name strips in [0, " + std::to_string(s.strip_count - 1) + "], first <= last (the run has " +
+                         std::to_string(s.strip_count) + " strips)");
   analysis::VelocityDistributionOptions vo;
   vo.first_strip = options.first_strip;
   vo.last_strip = options.last_strip;
   const auto v = analysis::velocity_distributions(s, vo);
-  const bool all_followed = static_cast<std::size_t>(io::H5Reader(file.string()).number("/", "particles_total")) == s.particles;
+  const bool all_followed =
+      static_cast<std::size_t>(io::H5Reader(file.string()).number("/", "particles_total")) == s.particles;
 
   io::write_atomically((dir / "analysis" / "velocity_distributions.csv").string(), [&](std::ostream& out) {
     out << "# velocity distributions (Campbell 1982 section 3.4.1) over " << s.samples << " samples, strips "
@@ -144,7 +145,8 @@ void analyze_distributions(const std::string& output_directory, const AnalyzeOpt
       out << "# units: r m (slice centre, slices of " << p.slice << " m), densities, their standard errors (block"
           << " averages over the samples) and number_density (the cell's: N / (gap x width"
           << (s.dimension == 3 ? " x depth" : "") << ")) 1/m^" << s.dimension << "\n";
-      out << "r,normal,normal_error,parallel,parallel_error,parallel_two_sided,parallel_two_sided_error,number_density\n"
+      out << "r,normal,normal_error,parallel,parallel_error,parallel_two_sided,parallel_two_sided_error,number_"
+             "density\n"
           << std::setprecision(10);
       for (std::size_t k = 0; k < p.r.size(); ++k)
         out << p.r[k] << ',' << p.normal[k] << ',' << p.normal_error[k] << ',' << p.parallel[k] << ','
@@ -157,8 +159,9 @@ void analyze_distributions(const std::string& output_directory, const AnalyzeOpt
     json.number("test_particles_per_sample", p.test_particles_per_sample);
     json.number("pair_range", p.slice * static_cast<double>(p.r.size()));
     json.integer("pair_slices", static_cast<long long>(p.r.size()));
-    std::cout << "pair distributions: " << p.test_particles_per_sample << " test particles per sample, n = "
-              << p.number_density << " (nu = " << solids << "), midplane band n = " << p.band_number_density << "\n";
+    std::cout << "pair distributions: " << p.test_particles_per_sample
+              << " test particles per sample, n = " << p.number_density << " (nu = " << solids
+              << "), midplane band n = " << p.band_number_density << "\n";
   } else {
     std::cout << "pair distributions: skipped (trajectory.particles follows " << s.particles
               << " particles, not all of them)\n";

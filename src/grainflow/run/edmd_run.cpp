@@ -34,8 +34,8 @@ struct Row {
   double time;
   observe::GlobalSample global;
   long long collisions, wall_collisions, events;
-  double pressure;      // over the interval ending at `time`: kinetic (instantaneous) + collisional
-  double dissipated;    // J since the start
+  double pressure;    // over the interval ending at `time`: kinetic (instantaneous) + collisional
+  double dissipated;  // J since the start
   engine_api::EnergyBudget budget;
   double budget_residual;
   edmd::ServoState servo;
@@ -52,21 +52,32 @@ class EdmdRun {
   int run();
 
  private:
-  template <class E> double current_measure(const E& e) const;
-  template <class E> void record(E& e);
-  template <class E> void transfer(io::StateArchive& ar, E& e);
-  template <class E> void checkpoint(E& e);
-  template <class E> void start(E& e);
-  template <class E> void event_loop(E& e);
-  template <class E> void bind_frame(E& e);
-  template <class E> const observe::Frame& frame_now(E& e);
-  template <class E> void listen_to_collisions(E& e);
+  template <class E>
+  double current_measure(const E& e) const;
+  template <class E>
+  void record(E& e);
+  template <class E>
+  void transfer(io::StateArchive& ar, E& e);
+  template <class E>
+  void checkpoint(E& e);
+  template <class E>
+  void start(E& e);
+  template <class E>
+  void event_loop(E& e);
+  template <class E>
+  void bind_frame(E& e);
+  template <class E>
+  const observe::Frame& frame_now(E& e);
+  template <class E>
+  void listen_to_collisions(E& e);
   long long collision_budget() const;
-  template <class E> bool end_segment(E& e);
+  template <class E>
+  bool end_segment(E& e);
   double next_sample_time() const;
   double first_profile_sample() const;
   void write_timeseries() const;
-  template <class E> void write_outputs(E& e);
+  template <class E>
+  void write_outputs(E& e);
 
   const CaseConfig& c;
   const RunOptions& options;
@@ -283,8 +294,8 @@ void EdmdRun::event_loop(E& e) {
       progress->update(t);
       if (t >= end_time) break;
       if (c.run.collisions > 0 && e.counters().collisions >= c.run.collisions) break;
-      if (c.run.protocol == "campbell" && e.counters().collisions - segment_start_collisions >= c.run.segment_collisions &&
-          end_segment(e))
+      if (c.run.protocol == "campbell" &&
+          e.counters().collisions - segment_start_collisions >= c.run.segment_collisions && end_segment(e))
         break;
       if (checkpoint_interval > 0.0 && t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) {
         while (t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) ++checkpoints;
@@ -359,22 +370,24 @@ void EdmdRun::write_timeseries() const {
     out << "# units: time s, energies J, granular_temperature m^2/s^2 (per degree of freedom), pressure "
         << (dim == 2 ? "N/m" : "Pa")
         << " (kinetic + collisional virial over the interval), dissipated J; energy budget since the start:"
-           " energy_input (gravity along periodic axes, walls, boundaries: sliding images, re-separation shifts), energy_change (kinetic + rotational +"
+           " energy_input (gravity along periodic axes, walls, boundaries: sliding images, re-separation shifts), "
+           "energy_change (kinetic + rotational +"
            " potential), energy_dissipated J, energy_budget_residual (input - change - dissipated) / max(|input|,"
            " |dissipated|)\n";
     const bool servo = c.servo.enabled;
-    if (servo) out << "# servo: gap and width m, wall_speed m/s (> 0 opening), wall_stress as pressure, top_speed m/s\n";
+    if (servo)
+      out << "# servo: gap and width m, wall_speed m/s (> 0 opening), wall_stress as pressure, top_speed m/s\n";
     out << "time,kinetic_energy,rotational_energy,granular_temperature,collisions,wall_collisions,events,pressure,"
            "dissipated,energy_input,energy_change,energy_dissipated,energy_budget_residual"
         << (servo ? ",gap,width,wall_speed,wall_stress,top_speed" : "") << "\n";
     for (const auto& r : rows) {
       out << r.time << ',' << r.global.kinetic_energy << ',' << r.global.rotational_energy << ','
-          << r.global.granular_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.events
-          << ',' << r.pressure << ',' << r.dissipated << ',' << r.budget.input() << ',' << r.budget.change << ','
+          << r.global.granular_temperature << ',' << r.collisions << ',' << r.wall_collisions << ',' << r.events << ','
+          << r.pressure << ',' << r.dissipated << ',' << r.budget.input() << ',' << r.budget.change << ','
           << r.budget.dissipated << ',' << r.budget_residual;
       if (servo)
-        out << ',' << r.servo.gap << ',' << r.servo.width << ',' << r.servo.wall_speed << ','
-            << r.servo.measured_stress << ',' << r.servo.top_speed;
+        out << ',' << r.servo.gap << ',' << r.servo.width << ',' << r.servo.wall_speed << ',' << r.servo.measured_stress
+            << ',' << r.servo.top_speed;
       out << '\n';
     }
   });
@@ -422,8 +435,7 @@ void EdmdRun::write_outputs(E& e) {
   summary.number("tc_wall_collision_fraction",
                  k.wall_collisions > 0 ? double(k.tc_wall_collisions) / double(k.wall_collisions) : 0.0);
   summary.number("events_per_second", wall_seconds > 0.0 ? (k.events - first_events) / wall_seconds : 0.0);
-  summary.number("collisions_per_second",
-                 wall_seconds > 0.0 ? (k.collisions - first_collisions) / wall_seconds : 0.0);
+  summary.number("collisions_per_second", wall_seconds > 0.0 ? (k.collisions - first_collisions) / wall_seconds : 0.0);
   if (restart) summary.string("restarted_from", options.restart);
   summary.number("pressure", pressure);
   summary.number("packing_fraction", solids / volume);
@@ -453,9 +465,10 @@ void EdmdRun::write_outputs(E& e) {
     summary.number("segment_start_time", rows[segment_first_row].time);
     summary.integer("segment_collisions", k.collisions - segment_start_collisions);
     if (!segment_converged && exit_status == 0 && interrupted == 0)
-      warnings.push_back("Campbell's protocol: none of the " + std::to_string(segment) + " segments of " +
-                         std::to_string(c.run.segment_collisions) +
-                         " collisions passed the section 2.5 check (the averages are the last segment's; raise run.max_segments)");
+      warnings.push_back(
+          "Campbell's protocol: none of the " + std::to_string(segment) + " segments of " +
+          std::to_string(c.run.segment_collisions) +
+          " collisions passed the section 2.5 check (the averages are the last segment's; raise run.max_segments)");
   }
   const double first = first_profile_sample();
   report_steady_state(row_time, row_energy, std::isfinite(first) ? first : c.output.average_start, summary, warnings);

@@ -5,8 +5,8 @@
 
 namespace grainflow::run {
 
-void catch_interrupts();     // installs the handlers (idempotent)
-int pending_interrupt();     // 0, or the signal's number once one arrived
+void catch_interrupts();  // installs the handlers (idempotent)
+int pending_interrupt();  // 0, or the signal's number once one arrived
 const char* signal_name(int signal);
 
 }  // namespace grainflow::run

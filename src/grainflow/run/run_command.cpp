@@ -46,9 +46,8 @@ int run_case(const RunCommand& command, const std::vector<std::string>& command_
   catch_interrupts();
   options.threads = command.threads;
   options.quiet = command.quiet;
-  return run_with_records(c, options, command_line, [&] {
-    return c.engine.kind == "edmd" ? run_edmd(c, options) : run_dem(c, options);
-  });
+  return run_with_records(c, options, command_line,
+                          [&] { return c.engine.kind == "edmd" ? run_edmd(c, options) : run_dem(c, options); });
 }
 
 }  // namespace grainflow::run

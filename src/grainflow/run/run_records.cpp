@@ -29,8 +29,8 @@ std::string utc_time(wall_clock::time_point t) {
 }
 
 void write_run_log(const std::string& dir, const CaseConfig& c, const RunOptions& options,
-                   const std::vector<std::string>& command_line, wall_clock::time_point start, wall_clock::time_point end,
-                   int exit_status) {
+                   const std::vector<std::string>& command_line, wall_clock::time_point start,
+                   wall_clock::time_point end, int exit_status) {
   io::JsonObject log;
   log.string("version", kVersion);
   log.string("git_commit", kGitCommit);

@@ -58,9 +58,8 @@ void write_final_state(const std::string& path, const ParticleStore& p, const st
     for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = i;
     for (std::size_t i : by_id) {
       const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
-      out << p.id[i] << ',' << species[p.species[i]].name << ',' << 2.0 * p.target_radius[i] << ',' << x.x << ','
-          << x.y << ',' << x.z << ',' << v.x << ',' << v.y << ',' << v.z << ',' << w.x << ',' << w.y << ',' << w.z
-          << '\n';
+      out << p.id[i] << ',' << species[p.species[i]].name << ',' << 2.0 * p.target_radius[i] << ',' << x.x << ',' << x.y
+          << ',' << x.z << ',' << v.x << ',' << v.y << ',' << v.z << ',' << w.x << ',' << w.y << ',' << w.z << '\n';
     }
   });
 }

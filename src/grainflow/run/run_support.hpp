@@ -28,7 +28,8 @@ inline double grid_time(long k, double interval, double end) {
 // The progress line on stderr (simulated time, rate, ETA), when stderr is a terminal.
 class Progress {
  public:
-  Progress(bool enabled, double duration) : enabled_(enabled), duration_(duration), start_(clock::now()), last_(start_) {}
+  Progress(bool enabled, double duration)
+      : enabled_(enabled), duration_(duration), start_(clock::now()), last_(start_) {}
   void update(double time);
   void finish();
 

@@ -25,8 +25,8 @@ void report_steady_state(std::span<const double> time, std::span<const double> k
   // Whether the long-term averages describe the steady flow: it converged before they began.
   summary.boolean("averaged_when_steady", steady.steady_from && averaging_start >= *steady.steady_from);
   if (steady.too_short) {
-    warnings.push_back("convergence not judged (Campbell 1982 section 2.5): the kinetic-energy history " + steady.reason +
-                       "; use a smaller output.interval");
+    warnings.push_back("convergence not judged (Campbell 1982 section 2.5): the kinetic-energy history " +
+                       steady.reason + "; use a smaller output.interval");
   } else if (!steady.steady_from) {
     warnings.push_back("the run has not converged (Campbell 1982 section 2.5): the kinetic energy " + steady.reason +
                        "; long-term averages describe a flow still changing");

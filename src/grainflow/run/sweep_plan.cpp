@@ -53,7 +53,8 @@ std::vector<std::string> split_values(const std::string& list) {
     }
   }
   if (quote) throw std::invalid_argument("unterminated string in '" + list + "'");
-  if (!brackets.empty()) throw std::invalid_argument(std::string("unclosed '") + brackets.back() + "' in '" + list + "'");
+  if (!brackets.empty())
+    throw std::invalid_argument(std::string("unclosed '") + brackets.back() + "' in '" + list + "'");
   push(list.size());
   return values;
 }
@@ -65,7 +66,8 @@ SweepVariable parse_vary(const std::string& spec, const std::string& label) {
   SweepVariable variable;
   variable.key = trim(spec.substr(0, equals));
   if (variable.key.empty()) throw InputError(source, spec, "expected KEY=VALUE1,VALUE2,... (the key is empty)");
-  if (variable.key.find_first_of(" \t") != std::string::npos) throw InputError(source, variable.key, "a key has no spaces");
+  if (variable.key.find_first_of(" \t") != std::string::npos)
+    throw InputError(source, variable.key, "a key has no spaces");
   try {
     variable.values = split_values(spec.substr(equals + 1));
   } catch (const std::invalid_argument& e) {
@@ -76,7 +78,8 @@ SweepVariable parse_vary(const std::string& spec, const std::string& label) {
 
 std::vector<SweepPoint> plan_sweep(const std::vector<SweepVariable>& variables, bool zip, const std::string& label) {
   const std::string source = label + " (--vary)";
-  if (variables.empty()) throw InputError(source, "", "nothing to vary: give at least one --vary KEY=VALUE1,VALUE2,...");
+  if (variables.empty())
+    throw InputError(source, "", "nothing to vary: give at least one --vary KEY=VALUE1,VALUE2,...");
   std::set<std::string> keys;
   for (const auto& variable : variables) {
     if (variable.values.empty()) throw InputError(source, variable.key, "no values");

@@ -30,16 +30,15 @@ extern char** environ;
 
 namespace grainflow::run {
 
-
 namespace fs = std::filesystem;
 
 namespace {
 
 // What happened to one run.
 struct RunResult {
-  int status = -1;      // exit status; 128 + signal when killed; -1 not run (yet)
+  int status = -1;       // exit status; 128 + signal when killed; -1 not run (yet)
   double seconds = 0.0;  // wall-clock time of the child
-  std::string reason;   // for a failure: the last line the run wrote, or why it did not start
+  std::string reason;    // for a failure: the last line the run wrote, or why it did not start
 };
 
 int usable_cores() {
@@ -203,8 +202,8 @@ struct Sweep {
     }
     fs::remove(dir / "summary.json", error);  // a stale one from an earlier sweep must not be read back
 
-    std::vector<std::string> args = {exe, "run", options.case_path, "-o", dir.string(), "--quiet", "--threads",
-                                     std::to_string(threads)};
+    std::vector<std::string> args = {exe,          "run",     options.case_path, "-o",
+                                     dir.string(), "--quiet", "--threads",       std::to_string(threads)};
     std::vector<std::string> sets = options.overrides;
     for (auto& assignment : point_overrides(variables, points[r])) sets.push_back(std::move(assignment));
     for (const auto& assignment : sets) {
@@ -373,8 +372,8 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
       (void)load_case(options.case_path, overrides);
     } catch (const InputError& e) {
       if (++invalid <= kShown)
-        std::cerr << "grainflow: invalid input: " << e.what() << " (sweep run " << describe_point(sweep.variables, point)
-                  << ")\n";
+        std::cerr << "grainflow: invalid input: " << e.what() << " (sweep run "
+                  << describe_point(sweep.variables, point) << ")\n";
     }
   }
   if (invalid > 0) {
@@ -394,7 +393,8 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
   if (!options.quiet && comm.root())
     std::cerr << "grainflow sweep: " << sweep.points.size() << " runs of " << options.case_path << " into "
               << sweep.output_directory << ", " << sweep.jobs << " at a time"
-              << (comm.size() > 1 ? " on each of " + std::to_string(comm.size()) + " MPI ranks" : std::string()) << "\n";
+              << (comm.size() > 1 ? " on each of " + std::to_string(comm.size()) + " MPI ranks" : std::string())
+              << "\n";
   sweep.run_all();
   sweep.gather_results();
   if (!comm.root()) return 0;  // rank 0 writes the tables and reports
@@ -406,7 +406,8 @@ int run_sweep(const SweepOptions& options, const std::vector<std::string>& comma
     if (sweep.results[r].status != 0) failed.push_back(r);
   const std::string csv = (fs::path(sweep.output_directory) / "sweep.csv").string();
   if (failed.empty()) {
-    if (!options.quiet) std::cerr << "grainflow sweep: all " << sweep.points.size() << " runs succeeded: " << csv << "\n";
+    if (!options.quiet)
+      std::cerr << "grainflow sweep: all " << sweep.points.size() << " runs succeeded: " << csv << "\n";
     return 0;
   }
   std::cerr << "grainflow: sweep: " << failed.size() << " of " << sweep.points.size() << " runs failed (" << csv

@@ -21,7 +21,6 @@
 
 namespace grainflow::run {
 
-
 namespace fs = std::filesystem;
 
 TheoryInputs theory_inputs(const CaseConfig& c) {
@@ -29,10 +28,12 @@ TheoryInputs theory_inputs(const CaseConfig& c) {
     throw InputError(c.path, key, reason + " (grainflow theory: docs/MODELS.md, \"Kinetic theory of a vibrated bed\")");
   };
   const bool edmd = c.engine.kind == "edmd";
-  if (edmd && c.engine.dimension != 3) fail("engine.dimension", "the kinetic theory is for spheres: dimension must be 3");
+  if (edmd && c.engine.dimension != 3)
+    fail("engine.dimension", "the kinetic theory is for spheres: dimension must be 3");
   int moving = 0;
   for (const auto& s : c.species) {
-    if (s.frozen) fail("species.frozen", "species '" + s.name + "' is frozen: the theory has no fixed particles in the bed");
+    if (s.frozen)
+      fail("species.frozen", "species '" + s.name + "' is frozen: the theory has no fixed particles in the bed");
     ++moving;
   }
   if (moving != 1) fail("species", "the theory is for one species of identical spheres, not " + std::to_string(moving));
@@ -50,14 +51,17 @@ TheoryInputs theory_inputs(const CaseConfig& c) {
     fail("domain.boundary", "the floor (" + floor_name + ") is bumpy; the theory's floor is a flat plane");
   if (c.domain.faces[floor] != FaceKind::wall)
     fail("domain.boundary", "the face gravity points at (" + floor_name + ") must be a wall: the theory's floor");
-  if (!c.drive.enabled) fail("drive", "the theory needs a [drive] on the floor (" + floor_name + "): a still floor gives the bed no energy");
+  if (!c.drive.enabled)
+    fail("drive",
+         "the theory needs a [drive] on the floor (" + floor_name + "): a still floor gives the bed no energy");
   if (c.drive.face != floor)
-    fail("drive.face", std::string("the driven face is ") + kFaceNames[c.drive.face] + ", not the floor (" + floor_name +
-                           ") that gravity points at");
+    fail("drive.face", std::string("the driven face is ") + kFaceNames[c.drive.face] + ", not the floor (" +
+                           floor_name + ") that gravity points at");
   const double amplitude = c.drive.amplitude[axis], frequency = c.drive.frequency[axis];
   const double speed = 2.0 * M_PI * frequency * amplitude;
   if (!(speed > 0.0))
-    fail("drive.amplitude", "the floor does not move along gravity: a smooth bed gets no energy from a floor sliding in its own plane");
+    fail("drive.amplitude",
+         "the floor does not move along gravity: a smooth bed gets no energy from a floor sliding in its own plane");
 
   TheoryInputs in;
   const SpeciesConfig& s = c.species[d.reference_species];
@@ -76,8 +80,8 @@ TheoryInputs theory_inputs(const CaseConfig& c) {
   const WallConfig& w = c.walls[floor];
   if (edmd) {
     if (restitution_law_named(c.collision.restitution_law) != RestitutionLawKind::constant)
-      fail("collision.restitution_law", "the theory needs a constant restitution coefficient, not the '" +
-                                            c.collision.restitution_law + "' law");
+      fail("collision.restitution_law",
+           "the theory needs a constant restitution coefficient, not the '" + c.collision.restitution_law + "' law");
     p.restitution = c.collision.restitution;
     p.floor_restitution = w.restitution >= 0.0 ? w.restitution : c.collision.wall_restitution;
     if (c.collision.tangential_restitution != -1.0 || wall_condition_named(w.condition) != WallCondition::smooth)
@@ -87,25 +91,31 @@ TheoryInputs theory_inputs(const CaseConfig& c) {
     // immovable floor.
     dem::visit_contact_law(c.contact.model, [&]<dem::ContactLaw Law>() {
       const typename Law::Params pair = Law::pair_params(c.contact, s);
-      p.restitution = Law::binary_contact(pair, {0.5 * d.reference_mass, 0.25 * s.diameter, d.impact_speed}).restitution;
-      p.floor_restitution =
-          Law::binary_contact(Law::wall_params(pair, w.contact, 0.0), {s.mass(c.engine.dimension), 0.5 * s.diameter, d.impact_speed}).restitution;
+      p.restitution =
+          Law::binary_contact(pair, {0.5 * d.reference_mass, 0.25 * s.diameter, d.impact_speed}).restitution;
+      p.floor_restitution = Law::binary_contact(Law::wall_params(pair, w.contact, 0.0),
+                                                {s.mass(c.engine.dimension), 0.5 * s.diameter, d.impact_speed})
+                                .restitution;
     });
   }
   if (!edmd && (c.contact.friction > 0.0 || w.friction > 0.0))
     in.notes.push_back("friction is ignored: the theory is for smooth spheres");
   for (int a = 0; a < 3; ++a)
     if (a != axis && c.drive.amplitude[a] != 0.0 && c.drive.frequency[a] != 0.0) {
-      in.notes.push_back("the floor's motion in its own plane is left out: it does not reach smooth spheres on a flat floor");
+      in.notes.push_back(
+          "the floor's motion in its own plane is left out: it does not reach smooth spheres on a flat floor");
       break;
     }
   if (in.floor_amplitude > 0.5 * s.diameter)
-    in.notes.push_back(fmt::format("the floor's amplitude ({:.3g} d) is not small: the theory's floor model neglects the "
-                                   "floor's displacement and keeps only its velocity", in.floor_amplitude / s.diameter));
+    in.notes.push_back(
+        fmt::format("the floor's amplitude ({:.3g} d) is not small: the theory's floor model neglects the "
+                    "floor's displacement and keeps only its velocity",
+                    in.floor_amplitude / s.diameter));
   if (d.shaking_acceleration < 10.0)
-    in.notes.push_back(fmt::format("Gamma = {:.3g}: Lan 1994 (section 4.1.4) found the theory matching simulations at "
-                                   "Gamma = 28 and 57 but not at 5.7 and below, where the bed is not thermalised",
-                                   d.shaking_acceleration));
+    in.notes.push_back(
+        fmt::format("Gamma = {:.3g}: Lan 1994 (section 4.1.4) found the theory matching simulations at "
+                    "Gamma = 28 and 57 but not at 5.7 and below, where the bed is not thermalised",
+                    d.shaking_acceleration));
   return in;
 }
 
@@ -120,7 +130,8 @@ struct RunCase {
 RunCase case_of_run(const fs::path& dir) {
   const fs::path summary = dir / "summary.json";
   if (!fs::exists(summary))
-    throw InputError(dir.string(), "", "not a run's output folder: it has no summary.json (give a case file or a run's folder)");
+    throw InputError(dir.string(), "",
+                     "not a run's output folder: it has no summary.json (give a case file or a run's folder)");
   std::ifstream in(summary);
   std::ostringstream text;
   text << in.rdbuf();
@@ -133,15 +144,17 @@ RunCase case_of_run(const fs::path& dir) {
   }
   RunCase run;
   for (const auto& [key, value] : fields)
-    if (key == "case_overrides" && value.kind == io::FlatJsonValue::Kind::string) run.overrides = split_overrides(value.text);
+    if (key == "case_overrides" && value.kind == io::FlatJsonValue::Kind::string)
+      run.overrides = split_overrides(value.text);
   for (const auto& [key, value] : fields) {
     if (key != "case") continue;
     if (value.kind != io::FlatJsonValue::Kind::string || value.text.empty())
       throw InputError(summary.string(), "case", "must be the path of the run's case file");
     if (!fs::exists(value.text))
       throw InputError(summary.string(), "case",
-                       "names '" + value.text + "', which does not exist here (the path is as given to grainflow run; "
-                       "run grainflow theory from the same folder, or give the case file itself)");
+                       "names '" + value.text +
+                           "', which does not exist here (the path is as given to grainflow run; "
+                           "run grainflow theory from the same folder, or give the case file itself)");
     run.path = value.text;
     return run;
   }
@@ -212,17 +225,19 @@ int run_theory(const TheoryOptions& options) {
       if (mass >= 0.999 * p.mass_holdup && top == r.Y.back()) top = r.Y[i];
     }
   }
-  std::cout << fmt::format("kinetic theory: m_t = {:.4g}, V_b = {:.4g} (<u^2>/(g d) = {:.4g}), e = {:.4g}, e_w = {:.4g}\n",
-                           p.mass_holdup, in.boundary_fluctuation_velocity, p.floor_variance, p.restitution,
-                           p.floor_restitution);
-  std::cout << fmt::format("  W(0) = {:.4g}, nu(0) = {:.4g}, peak nu = {:.4g} at Y = {:.4g}, 99.9% of the mass below Y = {:.4g}\n",
-                           r.W.front(), r.solids_fraction.front(), r.solids_fraction[peak], r.Y[peak], top);
+  std::cout << fmt::format(
+      "kinetic theory: m_t = {:.4g}, V_b = {:.4g} (<u^2>/(g d) = {:.4g}), e = {:.4g}, e_w = {:.4g}\n", p.mass_holdup,
+      in.boundary_fluctuation_velocity, p.floor_variance, p.restitution, p.floor_restitution);
+  std::cout << fmt::format(
+      "  W(0) = {:.4g}, nu(0) = {:.4g}, peak nu = {:.4g} at Y = {:.4g}, 99.9% of the mass below Y = {:.4g}\n",
+      r.W.front(), r.solids_fraction.front(), r.solids_fraction[peak], r.Y[peak], top);
   std::cout << "  (written to " << output.string() << ")\n";
   for (const auto& note : in.notes) std::cerr << "grainflow: note: " << note << "\n";
   for (const auto& warning : r.warnings) std::cerr << "grainflow: warning: " << warning << "\n";
   if (top * d > in.domain_height)
-    std::cerr << fmt::format("grainflow: warning: the theory's bed reaches Y = {:.4g}, above the case's domain ({:.4g} d)\n",
-                             top, in.domain_height / d);
+    std::cerr << fmt::format(
+        "grainflow: warning: the theory's bed reaches Y = {:.4g}, above the case's domain ({:.4g} d)\n", top,
+        in.domain_height / d);
   return 0;
 }
 

@@ -12,9 +12,9 @@
 namespace grainflow::run {
 
 struct TheoryOptions {
-  std::string input;                     // a case file, or a run's output folder (with summary.json)
-  std::string output;                    // default: kinetic_theory.csv here, or OUTDIR/analysis/kinetic_theory.csv
-  std::vector<std::string> overrides;    // --set, applied to the case
+  std::string input;                       // a case file, or a run's output folder (with summary.json)
+  std::string output;                      // default: kinetic_theory.csv here, or OUTDIR/analysis/kinetic_theory.csv
+  std::vector<std::string> overrides;      // --set, applied to the case
   std::string contact_value = "torquato";  // torquato | carnahan_starling
 };
 

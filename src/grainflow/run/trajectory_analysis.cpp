@@ -36,9 +36,9 @@ Series component(const io::H5Array& a, std::size_t axis, std::size_t first, std:
 }
 
 struct Estimates {
-  std::vector<std::vector<double>> vacf, msd;  // per component, lags 0..max
-  std::vector<analysis::VacfIntegral> running; // per component: running integral and D
-  double vacf_d[3], msd_d[3];                  // m^2/s per component
+  std::vector<std::vector<double>> vacf, msd;   // per component, lags 0..max
+  std::vector<analysis::VacfIntegral> running;  // per component: running integral and D
+  double vacf_d[3], msd_d[3];                   // m^2/s per component
   std::size_t fit_first = 0, fit_last = 0;
 };
 
@@ -134,7 +134,8 @@ void analyze_zone_series(const fs::path& dir) {
       const double delay = delay_of(c);
       const double height = centre[z] - floor_mean;
       const std::size_t peak = analysis::peak_bin(spectra[z]);
-      out << z << ',' << height << ',' << delay << ',' << (height > 0.0 ? analysis::propagation_speed(height, delay) : std::nan("")) << ','
+      out << z << ',' << height << ',' << delay << ','
+          << (height > 0.0 ? analysis::propagation_speed(height, delay) : std::nan("")) << ','
           << spectra[z].frequency[peak] << ',' << spectra[z].density[peak] << '\n';
     }
   });
@@ -173,11 +174,12 @@ void analyze_trajectory(const fs::path& dir, const AnalyzeOptions& options) {
   const long long stored_lag = static_cast<long long>(h5.number("/", "max_lag"));
   const long long max_lag = options.max_lag > 0 ? options.max_lag : stored_lag;
   if (samples < 4 || particles == 0)
-    throw InputError(file.string(), "samples", "holds " + std::to_string(samples) + " samples of " +
-                                                   std::to_string(particles) + " particles: too few to correlate");
+    throw InputError(file.string(), "samples",
+                     "holds " + std::to_string(samples) + " samples of " + std::to_string(particles) +
+                         " particles: too few to correlate");
   if (max_lag < 2 || max_lag >= static_cast<long long>(samples))
-    throw InputError(file.string(), "max_lag", std::to_string(max_lag) + " must lie in [2, samples = " +
-                                                   std::to_string(samples) + ")");
+    throw InputError(file.string(), "max_lag",
+                     std::to_string(max_lag) + " must lie in [2, samples = " + std::to_string(samples) + ")");
   const auto lags = static_cast<std::size_t>(max_lag);
 
   const Estimates all = estimate(velocity, position, lags, interval, 0, 1);
@@ -205,7 +207,8 @@ void analyze_trajectory(const fs::path& dir, const AnalyzeOptions& options) {
     out << std::setprecision(10);
     for (std::size_t k = 0; k <= lags; ++k) {
       const double sum = all.vacf[0][k] + all.vacf[1][k] + all.vacf[2][k];
-      const double d = (running[0].running_integral[k] + running[1].running_integral[k] + running[2].running_integral[k]) / 3.0;
+      const double d =
+          (running[0].running_integral[k] + running[1].running_integral[k] + running[2].running_integral[k]) / 3.0;
       out << k << ',' << k * interval << ',' << all.vacf[0][k] << ',' << all.vacf[1][k] << ',' << all.vacf[2][k] << ','
           << sum << ',' << running[0].running_integral[k] << ',' << running[1].running_integral[k] << ','
           << running[2].running_integral[k] << ',' << d << '\n';
@@ -266,8 +269,8 @@ void analyze_trajectory(const fs::path& dir, const AnalyzeOptions& options) {
   for (int a = 0; a < 3; ++a)
     std::cout << "  D_" << names[a] << " = " << all.vacf_d[a] << " / " << all.msd_d[a] << "\n";
   std::cout << "  D = " << (all.vacf_d[0] + all.vacf_d[1] + all.vacf_d[2]) / 3.0 << " / "
-            << (all.msd_d[0] + all.msd_d[1] + all.msd_d[2]) / 3.0 << "   (written to "
-            << (dir / "analysis").string() << "/)\n";
+            << (all.msd_d[0] + all.msd_d[1] + all.msd_d[2]) / 3.0 << "   (written to " << (dir / "analysis").string()
+            << "/)\n";
   if (theory) std::cout << "  D (Savage-Dai kinetic theory, cell-average T and bulk nu) = " << *theory << "\n";
 }
 
