@@ -23,6 +23,7 @@
 #include "grainflow/dem/neighbor_list.hpp"
 #include "grainflow/dem/portable_state.hpp"
 #include "grainflow/dem/rolling_resistance.hpp"
+#include "grainflow/dem/thread_slices.hpp"
 #include "grainflow/engine_api/coordination.hpp"
 #include "grainflow/engine_api/energy_budget.hpp"
 
@@ -357,11 +358,8 @@ class DemEngine {
   std::vector<Vec3> position_at_build_;
   double offset_at_build_ = 0.0;                                 // m, the Lees–Edwards offset the list was built at
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;  // per thread: shares for others' particles (kept zero)
-  struct alignas(64) TouchedList {  // a cache line each: every push_back stores the vector's end
-    std::vector<std::uint32_t> list;
-  };
-  std::vector<TouchedList> thread_touched_;  // per thread: where those shares are
-  std::vector<Vec3> wall_force_;             // N, each flat wall's force on the particles at the last evaluation
+  std::vector<ThreadSlot<std::vector<std::uint32_t>>> thread_touched_;  // per thread: where those shares are
+  std::vector<Vec3> wall_force_;  // N, each flat wall's force on the particles at the last evaluation
   DemCouetteServo servo_;
   std::array<int, 6> bump_wall_{};                 // wall carrying each face's bumps, -1 when they stand still
   std::array<int, 6> bump_owner_{};                // the bumpy wall of each face, -1 where there is none

@@ -431,7 +431,7 @@ void DemEngine<Law, Rolling>::pair_forces_with(double dt) {
         Vec3* torque = p.torque.data();
         Vec3* foreign_force = threads > 1 ? thread_force_[t].data() : force;
         Vec3* foreign_torque = threads > 1 ? thread_torque_[t].data() : torque;
-        std::vector<std::uint32_t>* touched = threads > 1 ? &thread_touched_[t].list : nullptr;
+        std::vector<std::uint32_t>* touched = threads > 1 ? &thread_touched_[t].value : nullptr;
         // The list's walk through raw arrays in locals: a store to a touching flag (a byte, which may
         // alias anything) would otherwise reload every array's address for the next listed pair.
         const Vec3* position = p.position.data();
@@ -509,13 +509,13 @@ void DemEngine<Law, Rolling>::pair_forces_with(double dt) {
       });
   if (threads > 1) {  // the buffers' shares, each entry cleared after use (listed once per pair)
     for (int t = 0; t < threads; ++t) {
-      for (const std::uint32_t j : thread_touched_[t].list) {
+      for (const std::uint32_t j : thread_touched_[t].value) {
         p.force[j] += thread_force_[t][j];
         p.torque[j] += thread_torque_[t][j];
         thread_force_[t][j] = Vec3{};
         thread_torque_[t][j] = Vec3{};
       }
-      thread_touched_[t].list.clear();
+      thread_touched_[t].value.clear();
     }
   }
   stats_.max_overlap_ratio = sums.max_ratio;

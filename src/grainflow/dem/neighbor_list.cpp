@@ -159,40 +159,39 @@ void CellGrid::build_pairs(const ParticleStore& p, const PeriodicBox& box, doubl
                            std::size_t expected_pairs) const {
   const std::size_t n = p.size();
   threads = std::max(1, threads);
-  std::vector<std::vector<std::uint32_t>> partners(threads), counts(threads);
-  std::vector<std::vector<std::uint8_t>> codes(threads);
+  struct SliceLists {  // one thread's: partners and their image codes, and the count per particle
+    std::vector<std::uint32_t> partners, counts;
+    std::vector<std::uint8_t> codes;
+  };
+  std::vector<ThreadSlot<SliceLists>> lists(threads);  // a thread's push_backs stay on its own lines
   const bool wide = box.sheared() || reach_ != std::array<int, 3>{1, 1, 1};
 
   for_each_slice(threads, n, [&](int t, std::size_t begin, std::size_t end) {
-    // The lists grow in this thread's own vectors, handed over at the end: the threads' vector
-    // objects in `partners` share a cache line, and every push_back stores its end there.
-    std::vector<std::uint32_t> my_partners, my_counts(end - begin, 0);
-    std::vector<std::uint8_t> my_codes;
-    my_partners.reserve(expected_pairs / threads + expected_pairs / threads / 16);  // + 6 %: lists vary
-    my_codes.reserve(my_partners.capacity());
+    SliceLists& mine = lists[t].value;
+    mine.counts.assign(end - begin, 0);
+    mine.partners.reserve(expected_pairs / threads + expected_pairs / threads / 16);  // + 6 %: lists vary
+    mine.codes.reserve(mine.partners.capacity());
     const bool framed = !frame_.empty();
-    if (framed && wide) search<true, true>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
-    else if (framed) search<true, false>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
-    else if (wide) search<false, true>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
-    else search<false, false>(p, box, skin, begin, end, my_partners, my_codes, my_counts);
-    partners[t] = std::move(my_partners);
-    codes[t] = std::move(my_codes);
-    counts[t] = std::move(my_counts);
+    if (framed && wide) search<true, true>(p, box, skin, begin, end, mine.partners, mine.codes, mine.counts);
+    else if (framed) search<true, false>(p, box, skin, begin, end, mine.partners, mine.codes, mine.counts);
+    else if (wide) search<false, true>(p, box, skin, begin, end, mine.partners, mine.codes, mine.counts);
+    else search<false, false>(p, box, skin, begin, end, mine.partners, mine.codes, mine.counts);
   });
 
   out.offsets.assign(n + 1, 0);
   std::size_t total = 0;
-  for (int t = 0; t < threads; ++t) total += partners[t].size();
+  for (const auto& slot : lists) total += slot.value.partners.size();
   out.partner.resize(total);
   out.shift.resize(total);
   std::size_t cursor = 0, i = 0;
-  for (int t = 0; t < threads; ++t) {
-    std::copy(partners[t].begin(), partners[t].end(), out.partner.begin() + cursor);
-    std::copy(codes[t].begin(), codes[t].end(), out.shift.begin() + cursor);
-    cursor += partners[t].size();
-    std::vector<std::uint32_t>().swap(partners[t]);  // freed as it goes: the peak holds about one list
-    std::vector<std::uint8_t>().swap(codes[t]);
-    for (std::uint32_t c : counts[t]) {
+  for (auto& slot : lists) {
+    SliceLists& l = slot.value;
+    std::copy(l.partners.begin(), l.partners.end(), out.partner.begin() + cursor);
+    std::copy(l.codes.begin(), l.codes.end(), out.shift.begin() + cursor);
+    cursor += l.partners.size();
+    std::vector<std::uint32_t>().swap(l.partners);  // freed as it goes: the peak holds about one list
+    std::vector<std::uint8_t>().swap(l.codes);
+    for (std::uint32_t c : l.counts) {
       out.offsets[i + 1] = out.offsets[i] + c;
       ++i;
     }

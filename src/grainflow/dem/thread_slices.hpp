@@ -11,6 +11,14 @@
 
 namespace grainflow::dem {
 
+// One thread's own data on cache lines of its own: what threads write side by side in a vector
+// (partial sums, a std::vector's end pointer as it grows) would otherwise share a line, and every
+// write by one thread would take the line from the other.
+template <class T>
+struct alignas(64) ThreadSlot {
+  T value{};
+};
+
 // Calls body(t, begin, end) once per thread t of a team of at most `threads`, the slices
 // [n t / team, n (t + 1) / team) covering [0, n); body(0, 0, n) when threads <= 1.
 template <class Body>
@@ -35,20 +43,17 @@ void for_each_slice(int threads, std::size_t n, Body&& body) {
 // default-constructed T); returns `total` with every partial added by T's += in thread order.
 template <class T, class Body>
 T reduce_slices(int threads, std::size_t n, T total, Body&& body) {
-  struct alignas(64) Slot {  // a cache line each: the threads' partials do not share one
-    T value{};
-  };
   if (threads <= 1) {
     T partial{};
     body(0, std::size_t{0}, n, partial);
     total += partial;
     return total;
   }
-  std::vector<Slot> partials(static_cast<std::size_t>(threads));
+  std::vector<ThreadSlot<T>> partials(static_cast<std::size_t>(threads));
   for_each_slice(threads, n, [&](int t, std::size_t begin, std::size_t end) {
     body(t, begin, end, partials[static_cast<std::size_t>(t)].value);
   });
-  for (const Slot& slot : partials) total += slot.value;
+  for (const ThreadSlot<T>& slot : partials) total += slot.value;
   return total;
 }
 
