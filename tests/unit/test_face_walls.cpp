@@ -44,11 +44,11 @@ void expect_view_of(std::vector<Wall> walls) {
   EXPECT_DOUBLE_EQ(view[2].position, 20.0);
 }
 
-TEST(FaceWalls, ViewsSoftSphereWalls) { expect_view_of(std::vector<dem::FlatWall>{}); }
+TEST(FaceWalls, ViewsSoftSphereWalls) { expect_view_of(std::vector<dem::DemWall>{}); }
 TEST(FaceWalls, ViewsEventDrivenWalls) { expect_view_of(std::vector<edmd::EdmdWall>{}); }
 
 TEST(FaceWalls, SoftSphereWallMovedToATimeIsThereThen) {
-  dem::FlatWall floor;
+  dem::DemWall floor;
   floor.face = 2;
   floor.axis = 1;
   floor.base_position = 1e-3;

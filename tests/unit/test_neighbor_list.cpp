@@ -501,7 +501,7 @@ TEST(NeighborList, ResortingDoesNotChangeAManyParticleRun) {
       if (step == wipe_at_step) {  // control only: forget every contact's history
         auto& store = const_cast<ContactStore<WaltonBraun::State>&>(engine.contacts());
         std::fill(store.pair_state.begin(), store.pair_state.end(), WaltonBraun::State{});
-        for (auto& wall : store.wall_state) std::fill(wall.begin(), wall.end(), WaltonBraun::State{});
+        for (auto& wall : store.walls) std::fill(wall.state.begin(), wall.state.end(), WaltonBraun::State{});
       }
     }
     return snapshot(engine);

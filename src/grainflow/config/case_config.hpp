@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "grainflow/config/contact_parameters.hpp"
+#include "grainflow/config/geometry_keys.hpp"
 #include "grainflow/config/observer_tables.hpp"
 #include "grainflow/core/vec3.hpp"
 
@@ -132,11 +133,33 @@ struct WallConfig {
   double spacing = 0.0;            // m, centre-to-centre; 0 = bump_diameter
 };
 
+// [geometry.motion]: a [[geometry]] wall's rigid motion, a translation at `velocity` (plus the case's
+// [drive] with `drive`) and a rotation at `angular_velocity` about the axis through `origin`
+// (right-handed; the origin moves with the translation).
+struct GeometryMotionConfig {
+  bool operator==(const GeometryMotionConfig&) const = default;  // the case writer's round-trip test
+  Vec3 velocity;          // m/s
+  Vec3 angular_velocity;  // rad/s
+  Vec3 origin;            // m, at t = 0
+  bool drive = false;     // follows [drive] (Lan's vibration) besides `velocity`
+  bool moves() const { return drive || velocity != Vec3{} || angular_velocity != Vec3{}; }
+};
+
+// One [[geometry]] wall: a wall of a registered type (walls/wall_types.hpp) anywhere in the box.
+struct GeometryConfig {
+  bool operator==(const GeometryConfig&) const = default;  // the case writer's round-trip test
+  std::string name;  // unique; names its rows in geometry.csv and its snapshot files
+  std::string type;  // plane | cylinder | cone
+  GeometryKeys keys;       // the type's own keys
+  WallConfig material;     // friction, rolling_friction and the contact law's wall keys, as [walls.FACE]
+  GeometryMotionConfig motion;
+};
+
 struct DriveConfig {
   bool operator==(const DriveConfig&) const = default;  // the case writer's round-trip test
   bool enabled = false;
   std::string preset;  // "" | rotary (eq. 4-1-1: equal amplitudes, phases 0, 2pi/3, 4pi/3)
-  int face = 2;        // ylo
+  int face = 2;        // ylo; -1: no face (a [[geometry]] wall with motion.drive takes the drive)
   Vec3 amplitude;      // m, displacement amplitude per axis
   Vec3 frequency;      // Hz per axis
   Vec3 phase;          // rad per axis
@@ -250,6 +273,7 @@ struct CaseConfig {
   ServoConfig servo;
   double lees_edwards_rate = 0.0;  // 1/s, [lees_edwards] shear_rate: unbounded simple shear (flow x, gradient y)
   std::array<WallConfig, 6> walls;
+  std::vector<GeometryConfig> geometry;  // [[geometry]] walls, in the order given
   DriveConfig drive;
   RunConfig run;
   OutputConfig output;

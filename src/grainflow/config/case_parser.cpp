@@ -17,6 +17,7 @@
 #include "grainflow/config/toml_reader.hpp"
 #include "grainflow/config/particle_csv.hpp"
 #include "grainflow/config/sampler_tables.hpp"
+#include "grainflow/config/wall_tables.hpp"
 
 namespace grainflow {
 namespace {
@@ -55,21 +56,6 @@ int face_index(TomlReader& reader, const std::string& key, const std::string& na
   for (int f = 0; f < 6; ++f)
     if (name == kFaceNames[f]) return f;
   reader.fail(key, "unknown face '" + name + "' (valid: xlo, xhi, ylo, yhi, zlo, zhi)");
-}
-
-// A key of another registered contact law is named as such rather than as unknown.
-void reject_other_laws_keys(TomlReader& r, ContactSchemas schemas, const ContactSchema& law,
-                            std::span<const std::string_view> ContactSchema::*keys) {
-  for (const auto& other : schemas)
-    for (std::string_view key : other.*keys) {
-      const std::string name(key);
-      if (!r.has(name) || std::find(std::begin(law.*keys), std::end(law.*keys), key) != std::end(law.*keys)) continue;
-      std::string owners;  // every law that takes it
-      for (const auto& owner : schemas)
-        if (std::find(std::begin(owner.*keys), std::end(owner.*keys), key) != std::end(owner.*keys))
-          owners += (owners.empty() ? "\"" : " or \"") + std::string(owner.name) + "\"";
-      r.fail(name, "belongs to contact.model = " + owners + "; \"" + std::string(law.name) + "\" does not take it");
-    }
 }
 
 // [engine]
@@ -264,53 +250,6 @@ void read_collision(TomlReader& top, CaseConfig& c) {
   }
 }
 
-// [walls]
-void read_walls(TomlReader& top, CaseConfig& c, ContactSchemas schemas) {
-  TomlReader walls = top.table("walls");
-  for (int f = 0; f < 6; ++f) {
-    if (!walls.has(kFaceNames[f])) continue;
-    TomlReader r = walls.table(kFaceNames[f]);
-    WallConfig& w = c.walls[f];
-    const bool edmd = c.engine.kind == "edmd";
-    if (r.has("condition") && !edmd) r.fail("condition", "wall conditions are for the event-driven engine");
-    w.condition = r.registered_name("condition", wall_condition_named, "smooth");
-    if (edmd) {
-      // A hard wall may be perfectly plastic (e = 0).
-      w.restitution = r.number("restitution", -1.0);
-      if (r.has("restitution") && !(w.restitution >= 0.0 && w.restitution <= 1.0))
-        r.fail("restitution", "must lie in [0, 1]");
-    } else {
-      const ContactSchema& law = *find_schema(schemas, c.contact.model);
-      reject_other_laws_keys(r, schemas, law, &ContactSchema::wall_keys);
-      law.read_wall(r, w.contact);
-    }
-    w.friction = r.number("friction", -1.0);
-    if (r.has("friction") && w.friction < 0.0) r.fail("friction", "must not be negative");
-    w.rolling_friction = r.number("rolling_friction", -1.0);
-    if (r.has("rolling_friction")) {
-      if (edmd) r.fail("rolling_friction", "is for the DEM engine (contact.rolling_friction)");
-      if (!(w.rolling_friction >= 0.0 && w.rolling_friction <= 1.0)) r.fail("rolling_friction", "must lie in [0, 1]");
-      if (c.contact.rolling_model == "none")
-        r.fail("rolling_friction", "needs contact.rolling_friction > 0 (the model)");
-    }
-    w.velocity = r.vec3("velocity", {});
-    w.bump_diameter = r.number("bump_diameter", 0.0);
-    if (r.has("bump_diameter") && !(w.bump_diameter > 0.0)) r.fail("bump_diameter", "must be positive");
-    w.lattice = r.string("lattice", w.lattice);
-    if (w.lattice != "square" && w.lattice != "triangular") r.fail("lattice", "must be \"square\" or \"triangular\"");
-    w.spacing = r.number("spacing", 0.0);
-    if (r.has("spacing") && !(w.spacing > 0.0)) r.fail("spacing", "must be positive");
-    const FaceKind kind = c.domain.faces[f];
-    if (kind == FaceKind::periodic || kind == FaceKind::open)
-      walls.fail(kFaceNames[f], "face is not a wall (boundary is periodic or open)");
-    if (kind != FaceKind::bumpy)
-      for (const char* key : {"bump_diameter", "lattice", "spacing"})
-        if (r.has(key)) r.fail(key, "only applies to a bumpy face");
-    r.reject_unknown_keys();
-  }
-  walls.reject_unknown_keys();
-}
-
 // [servo]
 void read_servo(TomlReader& top, CaseConfig& c) {
   if (top.has("servo")) {
@@ -362,7 +301,10 @@ void read_drive(TomlReader& top, CaseConfig& c) {
     d.enabled = true;
     d.preset = r.string("preset", "");
     if (!d.preset.empty() && d.preset != "rotary") r.fail("preset", "unknown preset (valid: rotary)");
-    d.face = face_index(r, "face", r.string("face", "ylo"));
+    // A [[geometry]] wall that follows the drive takes it alone unless a face is named too.
+    const bool geometry_driven =
+        std::any_of(c.geometry.begin(), c.geometry.end(), [](const GeometryConfig& g) { return g.motion.drive; });
+    d.face = geometry_driven && !r.has("face") ? -1 : face_index(r, "face", r.string("face", "ylo"));
     d.amplitude = r.vec3("amplitude", {});
     d.frequency = r.vec3("frequency", {});
     d.phase = r.vec3("phase", {});
@@ -389,7 +331,7 @@ void read_drive(TomlReader& top, CaseConfig& c) {
     if (d.start < 0.0) r.fail("start", "must not be negative");
     d.ramp = r.number("ramp", 1.0);
     if (d.ramp < 0.0) r.fail("ramp", "must not be negative");
-    const FaceKind kind = c.domain.faces[d.face];
+    const FaceKind kind = d.face >= 0 ? c.domain.faces[d.face] : FaceKind::wall;
     if (kind == FaceKind::periodic)
       r.fail("face", std::string("cannot drive a periodic face (") + kFaceNames[d.face] + ")");
     if (kind == FaceKind::open) r.fail("face", std::string("cannot drive an open face (") + kFaceNames[d.face] + ")");
@@ -482,7 +424,7 @@ void read_observer_tables(TomlReader& top, CaseConfig& c, ObserverSchemas schema
 }
 
 CaseConfig parse(const toml::table& root, const std::string& file, const std::set<std::string>& overridden,
-                 ContactSchemas schemas, ObserverSchemas observer_schemas) {
+                 ContactSchemas schemas, ObserverSchemas observer_schemas, GeometrySchemas geometry_schemas) {
   CaseConfig c;
   c.path = file;
   TomlReader top(file, &root, "", &overridden);
@@ -494,6 +436,7 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
   read_contact(top, c, schemas);
   read_collision(top, c);
   read_walls(top, c, schemas);
+  read_geometry(top, c, schemas, geometry_schemas);
   read_servo(top, c);
   read_lees_edwards(top, c);
   if (top.has("drive") && c.engine.kind == "edmd")
@@ -557,11 +500,11 @@ std::string read_case_file(const std::string& path) {
 }
 
 CaseConfig parse_case(const std::string& text, const std::string& label, const std::vector<std::string>& overrides,
-                      ContactSchemas schemas, ObserverSchemas observer_schemas) {
+                      ContactSchemas schemas, ObserverSchemas observer_schemas, GeometrySchemas geometry_schemas) {
   toml::table root = parse_toml(text, label);
   std::set<std::string> overridden;
   for (const auto& assignment : overrides) overridden.insert(apply_override(root, assignment, label));
-  CaseConfig c = parse(root, label, overridden, schemas, observer_schemas);
+  CaseConfig c = parse(root, label, overridden, schemas, observer_schemas, geometry_schemas);
   c.overrides = overrides;
   if (c.particles.init == "file") read_initial_particles(c, std::filesystem::path(label).parent_path());
   return c;

@@ -10,12 +10,13 @@
 
 #include "grainflow/config/case_config.hpp"
 #include "grainflow/config/contact_schema.hpp"
+#include "grainflow/config/geometry_keys.hpp"
 #include "grainflow/config/observer_schema.hpp"
 
 namespace grainflow {
 
 CaseConfig parse_case(const std::string& text, const std::string& label, const std::vector<std::string>& overrides,
-                      ContactSchemas schemas, ObserverSchemas observer_schemas);
+                      ContactSchemas schemas, ObserverSchemas observer_schemas, GeometrySchemas geometry_schemas);
 
 // The text of a case file, or InputError.
 std::string read_case_file(const std::string& path);

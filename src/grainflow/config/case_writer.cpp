@@ -159,6 +159,29 @@ void write_walls(Out& o, const CaseConfig& c) {
   }
 }
 
+void write_geometry(Out& o, const CaseConfig& c) {
+  for (const GeometryConfig& g : c.geometry) {
+    o.text << "\n[[geometry]]\n";
+    o.text_key("name", g.name);
+    o.text_key("type", g.type);
+    for (const GeometryKey& k : g.keys.entries()) {
+      if (k.kind == GeometryKey::Kind::number) o.key(k.key, k.value.x);
+      else if (k.kind == GeometryKey::Kind::vector) o.key(k.key, vec(k.value));
+      else o.key(k.key, k.value.x != 0.0);
+    }
+    for (const auto& [key, value] : g.material.contact.entries()) o.key(key, value);
+    if (g.material.friction >= 0.0) o.key("friction", g.material.friction);
+    if (g.material.rolling_friction >= 0.0) o.key("rolling_friction", g.material.rolling_friction);
+    if (g.motion.moves() || g.motion.origin != Vec3{}) {
+      o.table("geometry.motion");
+      o.key("velocity", vec(g.motion.velocity));
+      o.key("angular_velocity", vec(g.motion.angular_velocity));
+      o.key("origin", vec(g.motion.origin));
+      o.key("drive", g.motion.drive);
+    }
+  }
+}
+
 void write_optional_tables(Out& o, const CaseConfig& c) {
   if (c.servo.enabled) {
     const auto& v = c.servo;
@@ -179,7 +202,7 @@ void write_optional_tables(Out& o, const CaseConfig& c) {
     const auto& d = c.drive;
     o.table("drive");
     o.text_key("preset", d.preset);
-    o.key("face", kFaceNames[d.face]);
+    if (d.face >= 0) o.text_key("face", kFaceNames[d.face]);
     o.key("amplitude", vec(d.amplitude));
     o.key("frequency", vec(d.frequency));
     if (d.preset != "rotary") o.key("phase", vec(d.phase));  // the preset fixes the phases
@@ -301,6 +324,7 @@ std::string write_case_toml(const CaseConfig& c) {
   if (c.engine.kind == "dem") write_contact(o, c.contact);
   if (c.engine.kind == "edmd") write_collision(o, c.collision);
   write_walls(o, c);
+  write_geometry(o, c);
   write_optional_tables(o, c);
   write_run(o, c);
   write_output(o, c);

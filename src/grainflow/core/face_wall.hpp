@@ -32,17 +32,19 @@ struct FaceWall {
   double distance(const Vec3& x, double t) const { return inward * (x[axis] - at(t)); }
 };
 
-// A read-only view of an engine's walls as FaceWalls (each engine's wall type derives from it):
-// indices are the engine's, and the view follows the walls as they move.
+// A read-only view of an engine's box-face walls as FaceWalls (each engine's wall type derives from
+// it): indices are the engine's, and the view follows the walls as they move.
 class FaceWalls {
  public:
   FaceWalls() = default;
+  // The box faces lead an engine's walls (face >= 0); walls of other shapes after them are not faces.
   template <class Wall>
   explicit FaceWalls(const std::vector<Wall>& walls)
       : first_(walls.empty() ? nullptr
                              : reinterpret_cast<const unsigned char*>(static_cast<const FaceWall*>(walls.data()))),
-        stride_(sizeof(Wall)),
-        count_(walls.size()) {}
+        stride_(sizeof(Wall)) {
+    while (count_ < walls.size() && walls[count_].face >= 0) ++count_;
+  }
 
   std::size_t size() const { return count_; }
   bool empty() const { return count_ == 0; }

@@ -1,5 +1,5 @@
-// Contact memory (a law's State) for every neighbor pair and every particle-wall pair, carried
-// across neighbor-list rebuilds and particle re-orderings by particle id.
+// Contact memory (a law's State) for every neighbor pair and for the particles near each wall,
+// carried across neighbor-list rebuilds and particle re-orderings by particle id.
 #pragma once
 
 #include <algorithm>
@@ -11,34 +11,76 @@
 
 namespace grainflow::dem {
 
+// One wall's contact candidates: the particles within reach of each element of its surface when the
+// list was built (elements one after another, particles in index order within each), so that a
+// step's cost follows the particles near the wall, not the wall count times N.
+template <class State>
+struct WallContactList {
+  std::vector<std::uint32_t> offsets{0};  // element e's entries are [offsets[e], offsets[e + 1])
+  std::vector<std::uint32_t> particle;
+  std::vector<State> state;
+  std::vector<std::uint8_t> touching;  // 1 while the particle overlaps the element
+
+  std::size_t size() const { return particle.size(); }
+  std::size_t elements() const { return offsets.size() - 1; }
+  template <class Archive>
+  void serialize(Archive& ar) {
+    ar(offsets, particle, state, touching);
+  }
+};
+
 template <class State>
 struct ContactStore {
-  std::vector<State> pair_state;                         // aligned with NeighborPairs::partner
-  std::vector<std::uint8_t> pair_touching;               // 1 while the pair overlaps
-  std::vector<std::vector<State>> wall_state;            // [wall][particle]
-  std::vector<std::vector<std::uint8_t>> wall_touching;  // [wall][particle]
+  std::vector<State> pair_state;            // aligned with NeighborPairs::partner
+  std::vector<std::uint8_t> pair_touching;  // 1 while the pair overlaps
+  std::vector<WallContactList<State>> walls;  // per wall: its candidates and their memory
 
   template <class Archive>
   void serialize(Archive& ar) {
-    ar(pair_state, pair_touching, wall_state, wall_touching);
+    ar(pair_state, pair_touching, walls);
   }
 
-  void resize_walls(std::size_t walls, std::size_t particles) {
-    wall_state.assign(walls, std::vector<State>(particles));
-    wall_touching.assign(walls, std::vector<std::uint8_t>(particles, 0));
-  }
-
-  void permute_walls(const std::vector<std::uint32_t>& order) {
-    for (std::size_t w = 0; w < wall_state.size(); ++w) {
-      std::vector<State> s(order.size());
-      std::vector<std::uint8_t> t(order.size());
-      for (std::size_t i = 0; i < order.size(); ++i) {
-        s[i] = wall_state[w][order[i]];
-        t[i] = wall_touching[w][order[i]];
-      }
-      wall_state[w].swap(s);
-      wall_touching[w].swap(t);
+  // A touching wall contact's state by particle id, wall and element: what a rebuild of the wall
+  // lists carries over (and MPI sends along with a particle that changes ranks).
+  struct KeptWall {
+    std::uint32_t id, wall, element;
+    State state;
+    auto key() const { return std::array<std::uint32_t, 3>{wall, id, element}; }
+  };
+  // The touching contacts of wall `wall` (every wall when -1), by id, sorted by key.
+  std::vector<KeptWall> take_wall_touching(const std::vector<std::uint32_t>& ids, int wall = -1) const {
+    std::vector<KeptWall> kept;
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      if (wall >= 0 && static_cast<int>(w) != wall) continue;
+      const auto& list = walls[w];
+      for (std::size_t e = 0; e < list.elements(); ++e)
+        for (std::uint32_t k = list.offsets[e]; k < list.offsets[e + 1]; ++k)
+          if (list.touching[k])
+            kept.push_back({ids[list.particle[k]], static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(e),
+                            list.state[k]});
     }
+    return kept;
+  }
+  // Puts the kept states onto wall w's new list, whose particles have ids `ids`; `kept` sorted by key.
+  // Where `kept` names a contact twice, the later entry wins (a migrating particle's, appended).
+  void restore_wall(std::size_t w, const std::vector<KeptWall>& kept, const std::vector<std::uint32_t>& ids) {
+    auto& list = walls[w];
+    list.state.assign(list.size(), State{});
+    list.touching.assign(list.size(), 0);
+    if (kept.empty()) return;
+    for (std::size_t e = 0; e < list.elements(); ++e)
+      for (std::uint32_t k = list.offsets[e]; k < list.offsets[e + 1]; ++k) {
+        const std::array<std::uint32_t, 3> key{static_cast<std::uint32_t>(w), ids[list.particle[k]],
+                                               static_cast<std::uint32_t>(e)};
+        auto it = std::upper_bound(kept.begin(), kept.end(), key,
+                                   [](const auto& a, const KeptWall& b) { return a < b.key(); });
+        if (it == kept.begin() || (it - 1)->key() != key) continue;
+        list.state[k] = (it - 1)->state;
+        list.touching[k] = 1;
+      }
+  }
+  static void sort_kept(std::vector<KeptWall>& kept) {
+    std::stable_sort(kept.begin(), kept.end(), [](const KeptWall& a, const KeptWall& b) { return a.key() < b.key(); });
   }
 
   // A touching pair's state by the two particles' ids, `a` the one whose list holds the pair: all a

@@ -290,7 +290,7 @@ DerivedQuantities validate_dem_case(const CaseConfig& c) {
   validate_periodic_lengths(c, d);
   validate_bumpy_walls(c);
   validate_placement(c, d);
-  if (c.drive.enabled && c.domain.faces[c.drive.face] == FaceKind::periodic)
+  if (c.drive.enabled && c.drive.face >= 0 && c.domain.faces[c.drive.face] == FaceKind::periodic)
     fail(c, "drive.face", "cannot drive a periodic face");
   if (c.output.snapshot_interval > 0.0 && c.output.snapshot_interval < d.time_step)
     fail(c, "output.snapshot_interval", "must be at least one time step");

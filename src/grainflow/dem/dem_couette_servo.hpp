@@ -61,8 +61,8 @@ class DemCouetteServo {
     if (s.dimension == 3) area *= s.box.length(2);
     const double stress = 0.5 * impulse_ / (span * area);
     const double speed = s.servo.wall_speed(state_.wall_speed, stress);
-    FlatWall& bottom = s.walls[bottom_];
-    FlatWall& top = s.walls[top_];
+    DemWall& bottom = s.walls[bottom_];
+    DemWall& top = s.walls[top_];
     double bottom_x = bottom.velocity.x, top_x = top.velocity.x;
     const double now_gap = gap(s);
     if (s.servo.config.keep_shear_rate) s.servo.keep_shear_rate(bottom_x, top_x, shear_rate_ * now_gap);
@@ -87,7 +87,7 @@ class DemCouetteServo {
 
  private:
   // The wall moves at `velocity` from t on: its constant velocity (the case's) plus the steered part.
-  static void steer(FlatWall& wall, double t, const Vec3& velocity) {
+  static void steer(DemWall& wall, double t, const Vec3& velocity) {
     wall.motion.steer(t, velocity - wall.motion.constant_velocity());
     wall.move_to(t);
   }

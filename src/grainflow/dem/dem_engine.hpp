@@ -54,6 +54,27 @@ struct EnergyTally {
   double start_periodic_potential = 0.0;  // J
 };
 
+// One thread's share of a force loop's (pairs' or a wall's) counts, powers and force.
+struct ForceLoopSums {
+  double max_ratio = 0.0;       // the largest overlap over the smaller diameter
+  double boundary_power = 0.0;  // W: on a moving wall, or on free partners by wall bumps
+  double growth_power = 0.0, seam_power = 0.0;
+  Vec3 force{};   // N: on the particles (a wall's load)
+  Vec3 torque{};  // N m: on a wall, about its origin
+  long contacts = 0, begun = 0;
+  ForceLoopSums& operator+=(const ForceLoopSums& o) {
+    max_ratio = std::max(max_ratio, o.max_ratio);
+    boundary_power += o.boundary_power;
+    growth_power += o.growth_power;
+    seam_power += o.seam_power;
+    force += o.force;
+    torque += o.torque;
+    contacts += o.contacts;
+    begun += o.begun;
+    return *this;
+  }
+};
+
 // A contact's memory with rolling resistance: the law's and the rolling spring's.
 template <class LawState>
 struct WithRolling {
@@ -114,14 +135,15 @@ class DemEngine {
     ar(walls);
     if (walls != s_.walls.size()) throw RunError("checkpoint: the case has a different number of walls");
     for (auto& wall : s_.walls) ar(wall.position, wall.velocity);
-    ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_, energy_);
+    ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_, energy_, wall_build_, wall_force_,
+       wall_torque_);
     if (s_.box.sheared()) ar(s_.box.shear_offset, s_.box.shear_turns, offset_at_build_);
     if (servo_.enabled()) {
       for (auto& wall : s_.walls) wall.motion.serialize(ar);
-      ar(wall_force_);
       servo_.serialize(ar);
     }
     if (domain_) ar(*domain_);  // MPI: a restart runs on as many ranks (checked before)
+    for (auto& wall : s_.walls) wall.place(s_.time);  // the shapes where the clock puts them
   }
 
   // Restarts on another number of MPI ranks (portable_state.hpp).
@@ -181,22 +203,33 @@ class DemEngine {
       }
     }
     for (std::size_t w = 0; w < s_.walls.size(); ++w) {
-      const FlatWall& wall = s_.walls[w];
-      Vec3 normal;
-      normal[wall.axis] = wall.inward;
-      for (std::size_t i = 0; i < p.size(); ++i) {
-        if (!contacts_.wall_touching[w][i] || p.motion[i] != Motion::free || p.ghost[i]) continue;
-        const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
-        if (!wall_in_contact(gap, p.radius[i], true, wall_params_[w])) continue;
-        const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
-        State memory = contacts_.wall_state[w][i];
-        const ContactForce f = Law::force(wall_params_[w], law_state(memory), c, 0.0);
-        Vec3 contact = p.position[i];
-        contact[wall.axis] = wall.position;
-        visit(static_cast<std::uint32_t>(i), static_cast<int>(w), contact, f.normal * normal + f.tangential);
-      }
+      const DemWall& wall = s_.walls[w];
+      const auto& list = contacts_.walls[w];
+      std::visit(
+          [&](const auto& shape) {
+            for (std::size_t e = 0; e < list.elements(); ++e)
+              for (std::uint32_t k = list.offsets[e]; k < list.offsets[e + 1]; ++k) {
+                const std::uint32_t i = list.particle[k];
+                if (!list.touching[k] || p.motion[i] != Motion::free || p.ghost[i]) continue;
+                const walls::SurfaceContact sc = shape.contact(static_cast<int>(e), p.position[i]);
+                if (!wall_in_contact(sc.gap, p.radius[i], true, wall_params_[w])) continue;
+                Vec3 point = p.position[i] - sc.gap * sc.normal;
+                if (wall.face >= 0) point = face_point(wall, p.position[i]);  // exactly on the plane
+                const ContactKinematics c =
+                    wall_kinematics(i, wall.spins() ? wall.surface_velocity(point) : wall.velocity, sc.normal, sc.gap);
+                State memory = list.state[k];
+                const ContactForce f = Law::force(wall_params_[w], law_state(memory), c, 0.0);
+                visit(i, static_cast<int>(w), point, f.normal * sc.normal + f.tangential);
+              }
+          },
+          wall.shape);
     }
   }
+
+  // N and N m: the force and the torque about its origin the particles exert on wall w at the last
+  // force evaluation (this rank's share; N/m and N for discs).
+  Vec3 force_on_wall(std::size_t w) const { return -wall_force_[w]; }
+  Vec3 torque_on_wall(std::size_t w) const { return wall_torque_[w]; }
 
   // Positions with periodic crossings undone, for diffusion and outputs.
   Vec3 unwrapped_position(std::size_t i) const {
@@ -279,14 +312,15 @@ class DemEngine {
     c.effective_radius = ri * rj / (ri + rj);  // a law that does not read it leaves it to the optimiser
     return c;
   }
-  // Particle i touching `wall` (unit `normal` into the box) with its centre `gap` from it.
-  ContactKinematics wall_kinematics(std::size_t i, const FlatWall& wall, const Vec3& normal, double gap) const {
+  // Particle i touching a wall whose surface moves at `surface` where they touch (unit `normal`
+  // from the wall towards the particle), with its centre `gap` from it.
+  ContactKinematics wall_kinematics(std::size_t i, const Vec3& surface, const Vec3& normal, double gap) const {
     const ParticleStore& p = s_.particles;
     const double ri = p.radius[i];
     ContactKinematics c;
     c.normal = normal;
     c.overlap = ri - gap;
-    const Vec3 relative = p.velocity[i] - wall.velocity;
+    const Vec3 relative = p.velocity[i] - surface;
     c.normal_velocity = dot(relative, normal);
     c.slip_velocity = relative - c.normal_velocity * normal - cross(ri * p.angular_velocity[i], normal);
     c.effective_mass = p.mass[i];
@@ -331,6 +365,21 @@ class DemEngine {
   void pair_forces_with(double dt);
 
   void wall_forces(double dt);
+  // One wall's contacts, its shape's type known at compile time; `Spins`: its surface velocity has
+  // a turning part (ω × r).
+  template <bool Spins, class Shape>
+  ForceLoopSums wall_forces_on(std::size_t w, const Shape& shape, double dt);
+  // Wall w's contact candidates anew: the free particles within its reach of each element now.
+  void build_wall_list(std::size_t w);
+  // Between neighbour-list rebuilds: the lists of the walls whose surface moved more than half a
+  // skin since theirs were built, anew, their touching contacts kept.
+  void refresh_moved_walls();
+  // A box face's point under x, exactly on its plane.
+  static Vec3 face_point(const DemWall& wall, const Vec3& x) {
+    Vec3 point = x;
+    point[wall.axis] = wall.position;
+    return point;
+  }
   // The Couette servo after a step: the walls' impulse, and an update when one is due.
   void servo_step(double dt);
   // The normal force the particles exert on wall w at the last force evaluation (N; N/m for discs).
@@ -359,7 +408,16 @@ class DemEngine {
   double offset_at_build_ = 0.0;                                 // m, the Lees–Edwards offset the list was built at
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;  // per thread: shares for others' particles (kept zero)
   std::vector<ThreadSlot<std::vector<std::uint32_t>>> thread_touched_;  // per thread: where those shares are
-  std::vector<Vec3> wall_force_;  // N, each flat wall's force on the particles at the last evaluation
+  std::vector<Vec3> wall_force_;   // N, each wall's force on the particles at the last evaluation
+  std::vector<Vec3> wall_torque_;  // N m, the torque on each wall about its origin at the last evaluation
+  // Per wall: how far beyond a particle's radius its candidates reach (m), and its displacement and
+  // the time when its list was built.
+  std::vector<double> wall_reach_;
+  struct WallBuild {
+    Vec3 shift;
+    double time = 0.0;
+  };
+  std::vector<WallBuild> wall_build_;
   DemCouetteServo servo_;
   std::array<int, 6> bump_wall_{};                 // wall carrying each face's bumps, -1 when they stand still
   std::array<int, 6> bump_owner_{};                // the bumpy wall of each face, -1 where there is none

@@ -12,28 +12,10 @@
 
 #include "grainflow/dem/dem_engine.hpp"
 #include "grainflow/dem/dem_engine_portable_impl.hpp"
+#include "grainflow/dem/dem_engine_walls_impl.hpp"
 #include "grainflow/dem/thread_slices.hpp"
 
 namespace grainflow::dem {
-
-// One thread's share of a force loop's (pairs' or a wall's) counts, powers and force.
-struct ForceLoopSums {
-  double max_ratio = 0.0;       // the largest overlap over the smaller diameter
-  double boundary_power = 0.0;  // W: on a moving wall, or on free partners by wall bumps
-  double growth_power = 0.0, seam_power = 0.0;
-  Vec3 force{};  // N: on the particles (a wall's load)
-  long contacts = 0, begun = 0;
-  ForceLoopSums& operator+=(const ForceLoopSums& o) {
-    max_ratio = std::max(max_ratio, o.max_ratio);
-    boundary_power += o.boundary_power;
-    growth_power += o.growth_power;
-    seam_power += o.seam_power;
-    force += o.force;
-    contacts += o.contacts;
-    begun += o.begun;
-    return *this;
-  }
-};
 
 template <class Law, bool Rolling>
 DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vector<Params> wall_params, int threads,
@@ -49,7 +31,15 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
     bump_rolling_.fill(rolling_.pair);
   }
   s_.particles.ghost.assign(s_.particles.size(), 0);
-  contacts_.resize_walls(s_.walls.size(), s_.particles.size());
+  contacts_.walls.assign(s_.walls.size(), {});
+  wall_build_.assign(s_.walls.size(), {});
+  // A still surface's list holds while the particles move half a skin (the neighbour list's
+  // rebuild); a moving one's is rebuilt when the surface has moved half a skin, by which time a
+  // particle may have moved a whole skin since it was built.
+  for (const DemWall& wall : s_.walls) {
+    const bool moves = wall.motion.moves() || wall.turns || (s_.servo.config.enabled && wall.face >= 0);
+    wall_reach_.push_back((moves ? 1.5 : 0.5) * s_.skin + s_.cohesion_reach);
+  }
   bump_wall_.fill(-1);
   bump_owner_.fill(-1);
   bump_params_.fill(pair_params_);
@@ -67,7 +57,7 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
   grid_.setup(s_.box, cell_size_, s_.particles.size());
   if (domain != nullptr && domain->comm->size() > 1) {
     domain_ = std::make_unique<DomainExchange<State>>(*domain->comm, domain->grid);
-    domain_->keep_owned(s_.particles, contacts_);
+    domain_->keep_owned(s_.particles);
     rank_ = domain->comm->rank();
   }
   for (auto& wall : s_.walls) wall.move_to(s_.time);
@@ -124,6 +114,7 @@ void DemEngine<Law, Rolling>::step() {
   grow_radii();
   if (domain_) domain_->refresh(p);  // ghosts take their owners' new positions and velocities
   if (domain_ ? domain_->any(needs_rebuild()) : needs_rebuild()) rebuild(false);
+  else refresh_moved_walls();
   const double contact_before = energy_.contact_power, wall_before = energy_.wall_power,
                seam_before = energy_.seam_power;
   compute_forces(dt);
@@ -180,8 +171,8 @@ std::vector<engine_api::Coordination> DemEngine<Law, Rolling>::coordination() co
         ++c[a].particles;
         ++c[pairs_.partner[k]].particles;
       }
-  for (const auto& touching : contacts_.wall_touching)
-    for (std::size_t i = 0; i < c.size(); ++i) c[i].walls += touching[i] != 0;
+  for (const auto& list : contacts_.walls)
+    for (std::size_t k = 0; k < list.size(); ++k) c[list.particle[k]].walls += list.touching[k] != 0;
   return c;
 }
 
@@ -248,15 +239,21 @@ double DemEngine<Law, Rolling>::elastic_energy() const {
     }
   }
   for (std::size_t w = 0; w < s_.walls.size(); ++w) {
-    const FlatWall& wall = s_.walls[w];
-    for (std::size_t i = 0; i < p.size(); ++i) {
-      if (!contacts_.wall_touching[w][i] || !p.counted(i)) continue;
-      const double overlap = p.radius[i] - wall.inward * (p.position[i][wall.axis] - wall.position);
-      e += Law::elastic_energy(wall_params_[w], law_state(contacts_.wall_state[w][i]), energy_overlap(overlap),
-                               p.radius[i]);
-      if constexpr (Rolling)
-        e += RollingResistance::elastic_energy(rolling_.walls[w], contacts_.wall_state[w][i].rolling, p.radius[i]);
-    }
+    const auto& list = contacts_.walls[w];
+    std::visit(
+        [&](const auto& shape) {
+          for (std::size_t el = 0; el < list.elements(); ++el)
+            for (std::uint32_t k = list.offsets[el]; k < list.offsets[el + 1]; ++k) {
+              const std::uint32_t i = list.particle[k];
+              if (!list.touching[k] || !p.counted(i)) continue;
+              const double overlap = p.radius[i] - shape.contact(static_cast<int>(el), p.position[i]).gap;
+              e += Law::elastic_energy(wall_params_[w], law_state(list.state[k]), energy_overlap(overlap),
+                                       p.radius[i]);
+              if constexpr (Rolling)
+                e += RollingResistance::elastic_energy(rolling_.walls[w], list.state[k].rolling, p.radius[i]);
+            }
+        },
+        s_.walls[w].shape);
   }
   return e;
 }
@@ -334,7 +331,11 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
   // before the new one is built, so that the peak memory holds one list, not two. Until here the
   // particles are in the old list's order and unwrapped as when it was built.
   std::vector<typename ContactStore<State>::KeptPair> kept;
-  if (!first) kept = contacts_.take_touching(pairs_, p.id, p.image, s_.box.shear_turns);
+  std::vector<typename ContactStore<State>::KeptWall> kept_walls;
+  if (!first) {
+    kept = contacts_.take_touching(pairs_, p.id, p.image, s_.box.shear_turns);
+    kept_walls = contacts_.take_wall_touching(p.id);
+  }
   if (s_.box.sheared()) {
     // The offset back within one width (the turns go into the images' keys), and particles that
     // left through a y face into the sliding row: their kinetic energy's jump is the seam's work.
@@ -354,7 +355,7 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
   const std::size_t expected_pairs = pairs_.pair_count();
   pairs_ = NeighborPairs{};
   if (domain_) {
-    domain_->redistribute(p, contacts_, kept);  // MPI: particles change ranks, ghosts renewed
+    domain_->redistribute(p, kept, kept_walls);  // MPI: particles change ranks, ghosts renewed
     fit_grid_to_domain();
   }
   grid_.bin(p.position);
@@ -363,7 +364,6 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
     rebuilds_since_sort_ = 0;
     const std::vector<std::uint32_t> order = grid_.cell_order();
     p.permute(order);
-    contacts_.permute_walls(order);
     grid_.bin(p.position);
   }
   if (domain_) domain_->index(p);
@@ -371,6 +371,11 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
   // until the next rebuild (no particle moves more than skin / 2 before it).
   grid_.build_pairs(p, s_.box, s_.skin + s_.cohesion_reach, threads_, pairs_, expected_pairs);
   contacts_.restore(kept, pairs_, p.id, p.image, s_.box.shear_turns);
+  ContactStore<State>::sort_kept(kept_walls);
+  for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+    build_wall_list(w);
+    contacts_.restore_wall(w, kept_walls, p.id);
+  }
   position_at_build_ = p.position;
   ++stats_.rebuilds;
 }
@@ -524,64 +529,6 @@ void DemEngine<Law, Rolling>::pair_forces_with(double dt) {
   energy_.wall_power += sums.boundary_power;
   energy_.growth_power += sums.growth_power;
   energy_.seam_power += sums.seam_power;
-}
-
-template <class Law, bool Rolling>
-void DemEngine<Law, Rolling>::wall_forces(double dt) {
-  ParticleStore& p = s_.particles;
-  const std::size_t n = p.size();
-  ForceLoopSums all;
-  all.max_ratio = stats_.max_overlap_ratio;
-  const double growth_rate = s_.expansion_rate;
-  wall_force_.resize(s_.walls.size());
-  for (std::size_t w = 0; w < s_.walls.size(); ++w) {
-    const FlatWall& wall = s_.walls[w];
-    const Params& params = wall_params_[w];
-    auto& states = contacts_.wall_state[w];
-    auto& touching = contacts_.wall_touching[w];
-    Vec3 normal;
-    normal[wall.axis] = wall.inward;
-    const ForceLoopSums sums =
-        reduce_slices(threads_, n, ForceLoopSums{}, [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
-          ForceLoopSums local;  // in registers, stored once at the slice's end
-          for (std::size_t i = begin; i < end; ++i) {
-            if (p.motion[i] != Motion::free || p.ghost[i]) continue;  // a ghost meets walls on its own rank
-            const double ri = p.radius[i];
-            const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
-            if (!wall_in_contact(gap, ri, touching[i], params)) {
-              touching[i] = 0;
-              continue;
-            }
-            if (!touching[i]) {
-              touching[i] = 1;
-              states[i] = State{};
-              ++local.begun;
-            }
-            const ContactKinematics c = wall_kinematics(i, wall, normal, gap);
-            const ContactForce f = Law::force(params, law_state(states[i]), c, dt);
-            const Vec3 total = f.normal * normal + f.tangential;
-            p.force[i] += total;
-            p.torque[i] -= ri * cross(normal, f.tangential);
-            if constexpr (Rolling)
-              p.torque[i] +=
-                  RollingResistance::torque(rolling_.walls[w], states[i].rolling,
-                                            rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal), dt);
-            local.boundary_power += dot(total, wall.velocity);
-            local.force += total;
-            if (growth_rate > 0.0 && ri < p.target_radius[i]) local.growth_power += f.normal * growth_rate;
-            local.max_ratio = std::max(local.max_ratio, c.overlap / (2.0 * ri));
-            ++local.contacts;
-          }
-          sum = local;
-        });
-    wall_force_[w] = sums.force;
-    all += sums;
-  }
-  stats_.wall_contacts = all.contacts;
-  stats_.wall_collisions += all.begun;
-  stats_.max_overlap_ratio = all.max_ratio;
-  energy_.wall_power += all.boundary_power;
-  energy_.growth_power += all.growth_power;
 }
 
 }  // namespace grainflow::dem

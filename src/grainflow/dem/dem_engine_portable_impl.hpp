@@ -30,10 +30,9 @@ void DemEngine<Law, Rolling>::portable_share(PortableParticles& particles, Porta
              ContactStore<State>::image_key(pairs_.shift[k], p.image[i], p.image[j], s_.box.shear_turns),
              contacts_.pair_state[k]});
       }
-    for (std::size_t w = 0; w < contacts_.wall_state.size(); ++w)
-      if (contacts_.wall_touching[w][i])
-        contacts.walls.push_back({p.id[i], static_cast<std::uint32_t>(w), contacts_.wall_state[w][i]});
   }
+  for (const auto& kept : contacts_.take_wall_touching(p.id))  // the lists hold owned particles only
+    contacts.walls.push_back({kept.id, kept.wall, kept.element, kept.state});
   contacts.stats = stats_;
   contacts.rebuilds_since_sort = rebuilds_since_sort_;
 }
@@ -46,16 +45,11 @@ void DemEngine<Law, Rolling>::restore_portable(const PortableParticles& particle
   std::vector<std::int64_t> index(particles.particles.size(), -1);
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.id[i] < index.size()) index[p.id[i]] = static_cast<std::int64_t>(i);
-  for (std::size_t w = 0; w < contacts_.wall_state.size(); ++w) {
-    std::fill(contacts_.wall_state[w].begin(), contacts_.wall_state[w].end(), State{});
-    std::fill(contacts_.wall_touching[w].begin(), contacts_.wall_touching[w].end(), 0);
-  }
-  for (const auto& c : contacts.walls) {
-    const std::int64_t i = c.id < index.size() ? index[c.id] : -1;
-    if (i < 0 || p.ghost[i] || c.wall >= contacts_.wall_state.size()) continue;
-    contacts_.wall_state[c.wall][i] = c.state;
-    contacts_.wall_touching[c.wall][i] = 1;
-  }
+  // The lists the constructor built from the restored particles take their states.
+  std::vector<typename ContactStore<State>::KeptWall> kept;
+  for (const auto& c : contacts.walls) kept.push_back({c.id, c.wall, c.element, c.state});
+  ContactStore<State>::sort_kept(kept);
+  for (std::size_t w = 0; w < contacts_.walls.size(); ++w) contacts_.restore_wall(w, kept, p.id);
   for (const auto& r : particles.particles) {
     const std::int64_t i = r.id < index.size() ? index[r.id] : -1;
     if (i < 0) continue;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "grainflow/config/case_config.hpp"
@@ -11,21 +12,52 @@
 #include "grainflow/core/periodic_box.hpp"
 #include "grainflow/dem/wall_motion.hpp"
 #include "grainflow/particles/particle_store.hpp"
+#include "grainflow/walls/wall_types.hpp"
 
 namespace grainflow::dem {
 
-// A flat wall on one face of the box: a boundary sphere of infinite mass (section 2.6.2).
-struct FlatWall : FaceWall {
-  double base_position = 0.0;  // m, plane coordinate at t = 0
+// A wall of the soft-sphere engine, a boundary of infinite mass (section 2.6.2): a box face (a plane
+// of walls/plane_wall.hpp, `face` >= 0, its FaceWall part what observers read) or a [[geometry]]
+// wall of any registered type (`face` = -1, `geometry` its index in the case). Its shape follows a
+// rigid motion: the translation of `motion` and a turn at `angular_velocity` about `origin`.
+struct DemWall : FaceWall {
+  std::string name;   // the face's (xlo ... zhi) or the geometry's
+  int geometry = -1;  // index into CaseConfig::geometry, or -1 for a box face
+  walls::WallShape initial_shape, shape;  // at t = 0; now
+  double base_position = 0.0;  // m, a face's plane coordinate at t = 0
   WallMotion motion;
+  Vec3 angular_velocity;        // rad/s about `origin`
+  Vec3 initial_origin, origin;  // m, at t = 0; now (moving with the translation)
+  Vec3 shift;                   // m, the translation's displacement now
+  bool turns = false;     // its turning moves its surface (it does not spin in place): the shape is rotated
+  double reach_turn = 0.0;  // m per radian: how far its surface in the box travels as it turns
   double friction = 0.0;  // the contact law's own wall keys are in the case (WallConfig::contact)
   bool bumpy = false;     // backing plane of a bumpy wall
 
-  // Position and velocity at time t (`since` = t: at() is exact only now, as the motion is not linear).
+  // Position, velocity and shape at time t (`since` = t: at() is exact only now, as the motion is not linear).
   void move_to(double t) {
-    position = base_position + motion.displacement(t)[axis];
     velocity = motion.velocity(t);
     since = t;
+    place(t);
+  }
+  // The shape and origin at time t, from the motion's displacement.
+  void place(double t) {
+    shift = motion.displacement(t);
+    if (face >= 0) position = base_position + shift[axis];
+    origin = initial_origin + shift;
+    const walls::RigidMotion m{initial_origin, shift,
+                               turns ? walls::Rotation::about(angular_velocity, t) : walls::Rotation{}};
+    shape = std::visit([&](const auto& s) -> walls::WallShape { return s.moved(m); }, initial_shape);
+  }
+  // The velocity of the wall's surface at `point`.
+  Vec3 surface_velocity(const Vec3& point) const { return velocity + cross(angular_velocity, point - origin); }
+  bool spins() const { return angular_velocity != Vec3{}; }
+  // How far its surface may have moved between two displacements and times: bounds the particles
+  // a wall may reach that were out of its reach when its contact list was built.
+  double surface_travel(const Vec3& shift_then, double then, const Vec3& shift_now, double now) const {
+    double travel = std::visit([&](const auto& s) { return s.surface_shift(shift_now - shift_then); }, initial_shape);
+    if (turns) travel += norm(angular_velocity) * std::fabs(now - then) * reach_turn;
+    return travel;
   }
 };
 
@@ -42,7 +74,7 @@ struct DemState {
   long step = 0;
   double skin = 0.0;            // m
   double cohesion_reach = 0.0;  // m: how far apart an adhesive contact's surfaces may be pulled before it breaks
-  std::vector<FlatWall> walls;
+  std::vector<DemWall> walls;  // the box faces first, in face order, then [[geometry]]
   std::array<Vec3, 6> bump_velocity{};      // m/s of the bumps of each face
   std::array<Vec3, 6> bump_displacement{};  // m, displacement applied so far to each face's bumps
   double expansion_rate = 0.0;              // m/s of radius growth (section 2.2), 0 when done

@@ -96,6 +96,9 @@ DerivedQuantities derive(const CaseConfig& c) {
       for (int f = 0; f < 6; ++f)
         d.cohesion_reach =
             std::max(d.cohesion_reach, -Law::detach_overlap(Law::wall_params(p, c.walls[f].contact, 0.0), radius));
+      for (const GeometryConfig& g : c.geometry)
+        d.cohesion_reach = std::max(d.cohesion_reach,
+                                    -Law::detach_overlap(Law::wall_params(p, g.material.contact, 0.0), radius));
     }
   });
   if (c.run.time_step > 0.0) {

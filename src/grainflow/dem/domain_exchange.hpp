@@ -6,8 +6,8 @@
 // in the same orientation (lower id first) from the same numbers, so both keep the same contact
 // history bit for bit; only the sums of forces differ in order, by round-off.
 //
-// At a neighbour-list rebuild a particle that left the box goes to its new owner with its wall
-// contact states and the states of its touching pairs, which only its owner is sure to have
+// At a neighbour-list rebuild a particle that left the box goes to its new owner with its touching
+// wall contacts' states and the states of its touching pairs, which only its owner is sure to have
 // followed from the contact's start (a copy may have arrived mid-contact).
 #pragma once
 
@@ -74,21 +74,21 @@ class DomainExchange {
   }
 
   // The start: every rank built the same whole initial state; each keeps the particles in its slab.
-  void keep_owned(ParticleStore& p, ContactStore<State>& contacts) const {
+  void keep_owned(ParticleStore& p) const {
     std::vector<std::uint32_t> mine;
     for (std::size_t i = 0; i < p.size(); ++i)
       if (grid_.owner(p.position[i]) == comm_.rank()) mine.push_back(static_cast<std::uint32_t>(i));
     p.permute(mine);
-    contacts.permute_walls(mine);
   }
 
-  // At a rebuild, after `kept` took the touching pairs' states: emigrants leave with their states,
-  // immigrants arrive with theirs (appended to `kept`, so they win over a copy's), ghosts are renewed.
-  void redistribute(ParticleStore& p, ContactStore<State>& contacts, std::vector<KeptPair>& kept) {
+  // At a rebuild, after `kept` and `kept_walls` took the touching pairs' and wall contacts' states:
+  // emigrants leave with their states, immigrants arrive with theirs (appended to `kept`, so they
+  // win over a copy's; to `kept_walls`), ghosts are renewed.
+  using KeptWall = typename ContactStore<State>::KeptWall;
+  void redistribute(ParticleStore& p, std::vector<KeptPair>& kept, std::vector<KeptWall>& kept_walls) {
     const int me = comm_.rank(), ranks = comm_.size();
     const bool rebalanced = ++rebuilds_ % kRebalanceEvery == 0;
     if (rebalanced) rebalance(p);
-    const std::size_t walls = contacts.wall_state.size();
     std::vector<std::uint32_t> stay;
     std::vector<std::pair<std::uint32_t, int>> leaving;  // (id, new owner), sorted by id
     std::vector<std::vector<std::uint8_t>> out(ranks);
@@ -106,17 +106,13 @@ class DomainExchange {
       ++count[r];
       ++migrated_;
     }
-    // Message: particle count, records with their wall states, then pair count and pair states.
+    // Message: particle count and records, then pair count and pair states, then wall contacts.
     for (int r = 0; r < ranks; ++r) bytes::put(out[r], count[r]);
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.ghost[i]) continue;
       const int r = grid_.owner(p.position[i]);
       if (r == me) continue;
       bytes::put(out[r], p.record(i));
-      for (std::size_t w = 0; w < walls; ++w) {
-        bytes::put(out[r], contacts.wall_state[w][i]);
-        bytes::put(out[r], contacts.wall_touching[w][i]);
-      }
     }
     std::sort(leaving.begin(), leaving.end());
     auto destination = [&](std::uint32_t id) {
@@ -129,13 +125,17 @@ class DomainExchange {
       if (ra >= 0) pairs_out[ra].push_back(k);
       if (rb >= 0 && rb != ra) pairs_out[rb].push_back(k);
     }
+    std::vector<std::vector<KeptWall>> walls_out(ranks);
+    for (const KeptWall& k : kept_walls)
+      if (const int r = destination(k.id); r >= 0) walls_out[r].push_back(k);
     for (int r = 0; r < ranks; ++r) {
       bytes::put(out[r], static_cast<std::uint64_t>(pairs_out[r].size()));
       for (const KeptPair& k : pairs_out[r]) bytes::put(out[r], k);
+      bytes::put(out[r], static_cast<std::uint64_t>(walls_out[r].size()));
+      for (const KeptWall& k : walls_out[r]) bytes::put(out[r], k);
     }
     out[me].clear();
     p.permute(stay);
-    contacts.permute_walls(stay);
     // Between rebalances a particle moves less than half a skin, so it stays within reach of its
     // old box and its new owner is a neighbour; after one (or if not) every rank talks to every rank.
     const bool everyone = comm_.any(rebalanced || far);
@@ -148,15 +148,13 @@ class DomainExchange {
         ParticleStore::Record rec = bytes::take<ParticleStore::Record>(in[r], cursor);
         rec.ghost = 0;
         p.push_back(rec);
-        for (std::size_t w = 0; w < walls; ++w) {
-          contacts.wall_state[w].push_back(bytes::take<State>(in[r], cursor));
-          contacts.wall_touching[w].push_back(bytes::take<std::uint8_t>(in[r], cursor));
-        }
       }
       const auto states = bytes::take<std::uint64_t>(in[r], cursor);
       for (std::uint64_t k = 0; k < states; ++k) kept.push_back(bytes::take<KeptPair>(in[r], cursor));
+      const auto wall_states = bytes::take<std::uint64_t>(in[r], cursor);
+      for (std::uint64_t k = 0; k < wall_states; ++k) kept_walls.push_back(bytes::take<KeptWall>(in[r], cursor));
     }
-    send_ghosts(p, contacts);
+    send_ghosts(p);
   }
 
   // After the rebuild's final ordering: where the ghosts sent and received sit now.
@@ -233,7 +231,7 @@ class DomainExchange {
     ++rebalances_;
   }
 
-  void send_ghosts(ParticleStore& p, ContactStore<State>& contacts) {
+  void send_ghosts(ParticleStore& p) {
     const int ranks = comm_.size();
     send_ids_.assign(ranks, {});
     receive_ids_.assign(ranks, {});
@@ -252,10 +250,6 @@ class DomainExchange {
         rec.ghost = 1;
         p.push_back(rec);
         receive_ids_[r].push_back(rec.id);
-        for (std::size_t w = 0; w < contacts.wall_state.size(); ++w) {  // ghosts meet no walls here
-          contacts.wall_state[w].push_back(State{});
-          contacts.wall_touching[w].push_back(0);
-        }
       }
     }
   }

@@ -100,13 +100,24 @@ struct Escape {
   double beyond = 0.0;  // m, how far its centre lies behind the plane
 };
 
+// The smallest gap between x and any element of the wall's surface (negative behind it).
+inline double wall_gap(const DemWall& wall, const Vec3& x) {
+  return std::visit(
+      [&](const auto& shape) {
+        double gap = shape.contact(0, x).gap;
+        for (int e = 1; e < shape.elements(); ++e) gap = std::min(gap, shape.contact(e, x).gap);
+        return gap;
+      },
+      wall.shape);
+}
+
 inline std::optional<Escape> first_escape(const DemState& s) {
   const ParticleStore& p = s.particles;
   for (std::size_t w = 0; w < s.walls.size(); ++w) {
-    const FlatWall& wall = s.walls[w];
+    const DemWall& wall = s.walls[w];
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.motion[i] != Motion::free) continue;
-      const double gap = wall.inward * (p.position[i][wall.axis] - wall.position);
+      const double gap = wall_gap(wall, p.position[i]);
       if (gap < -2.0 * p.radius[i]) return Escape{i, static_cast<int>(w), -gap};
     }
   }
@@ -120,15 +131,14 @@ inline void check_escape(const DemState& s, const DerivedQuantities& d) {
   if (!escape) return;
   const ParticleStore& p = s.particles;
   const std::size_t i = escape->index;
-  const FlatWall& wall = s.walls[escape->wall];
+  const DemWall& wall = s.walls[escape->wall];
   const double m = p.mass[i], r = p.radius[i];
   const double speed = norm(p.velocity[i]);
   // A linear spring stopped from speed v penetrates v sqrt(m / K1); to keep that below 1% of d
   // (Lan's criterion) K1 >= m (v / 0.01 d)^2.
   const double penetration = speed * std::sqrt(m / d.normal_stiffness);
   const double needed_k1 = m * std::pow(speed / (0.02 * r), 2);
-  std::string text = describe_particle(s, i) + " went through the " + kFaceNames[wall.face] +
-                     " wall at t = " + fault_detail::format("%.9g", s.time) + " s: its centre lies " +
+  std::string text = describe_particle(s, i) + " went through the " + wall.name + " wall at t = " + fault_detail::format("%.9g", s.time) + " s: its centre lies " +
                      fault_detail::format("%.4g", escape->beyond) + " m beyond the wall (more than a diameter, " +
                      fault_detail::format("%.4g", 2.0 * r) +
                      " m); likely cause: too soft a wall or too large a time step "
@@ -163,9 +173,7 @@ inline LargestOverlap largest_overlap(const DemState& s, const NeighborPairs& pa
   for (std::size_t w = 0; w < s.walls.size(); ++w)
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.motion[i] != Motion::free) continue;
-      const FlatWall& wall = s.walls[w];
-      const double ratio =
-          (p.radius[i] - wall.inward * (p.position[i][wall.axis] - wall.position)) / (2.0 * p.radius[i]);
+      const double ratio = (p.radius[i] - wall_gap(s.walls[w], p.position[i])) / (2.0 * p.radius[i]);
       if (ratio > best.ratio) best = {ratio, i, i, static_cast<int>(w)};
     }
   return best;
@@ -183,7 +191,7 @@ inline std::string overlap_halt_message(const DemState& s, const NeighborPairs& 
   if (now.ratio > 0.0) {
     const auto& id = s.particles.id;
     text += now.wall >= 0 ? "; now the largest is between particle " + std::to_string(id[now.i]) + " and the " +
-                                kFaceNames[s.walls[now.wall].face] + " wall"
+                                s.walls[now.wall].name + " wall"
                           : "; now the largest is between particles " + std::to_string(id[now.i]) + " and " +
                                 std::to_string(id[now.j]);
     text += " (" + format("%.4g", now.ratio) + " of a diameter)";

@@ -44,7 +44,7 @@ void add_walls(const CaseConfig& c, DemState& s) {
     const FaceKind kind = c.domain.faces[f];
     if (!holds_wall(kind)) continue;
     const WallConfig& w = c.walls[f];
-    FlatWall wall;
+    DemWall wall;
     wall.face = f;
     wall.axis = face_axis(f);
     wall.inward = face_is_high(f) ? -1.0 : 1.0;
@@ -52,14 +52,70 @@ void add_walls(const CaseConfig& c, DemState& s) {
     wall.motion = WallMotion(w.velocity, c.drive.enabled && c.drive.face == f ? &c.drive : nullptr);
     wall.friction = w.friction >= 0.0 ? w.friction : c.contact.friction;
     wall.bumpy = kind == FaceKind::bumpy;
+    wall.name = kFaceNames[f];
+    walls::PlaneWall plane;  // the face as a plane: zero off its axis, so its distance is exactly x[axis] - position
+    plane.point[wall.axis] = wall.base_position;
+    plane.normal[wall.axis] = wall.inward;
+    wall.initial_shape = plane;
+    wall.move_to(0.0);
+    s.walls.push_back(wall);
+  }
+  for (std::size_t g = 0; g < c.geometry.size(); ++g) {
+    const GeometryConfig& geometry = c.geometry[g];
+    DemWall wall;
+    wall.face = -1;
+    wall.name = geometry.name;
+    wall.geometry = static_cast<int>(g);
+    wall.initial_shape = walls::make_wall_shape(geometry);
+    wall.motion = WallMotion(geometry.motion.velocity, geometry.motion.drive ? &c.drive : nullptr);
+    wall.angular_velocity = geometry.motion.angular_velocity;
+    wall.initial_origin = geometry.motion.origin;
+    wall.turns = !std::visit(
+        [&](const auto& shape) { return shape.spins_in_place(wall.angular_velocity, wall.initial_origin); },
+        wall.initial_shape);
+    wall.reach_turn = walls::farthest_corner(c.domain.lo, c.domain.hi, wall.initial_origin);
+    wall.friction = geometry.material.friction >= 0.0 ? geometry.material.friction : c.contact.friction;
     wall.move_to(0.0);
     s.walls.push_back(wall);
   }
 }
 
+// The first wall of [[geometry]] whose surface a sphere at x of radius r overlaps by more than
+// `allowed` of its radius, or null.
+const DemWall* geometry_in_the_way(const DemState& s, const Vec3& x, double r, double allowed) {
+  for (const DemWall& wall : s.walls) {
+    if (wall.face >= 0) continue;
+    const bool clear = std::visit(
+        [&](const auto& shape) {
+          for (int e = 0; e < shape.elements(); ++e)
+            if (shape.contact(e, x).gap < (1.0 - allowed) * r) return false;
+          return true;
+        },
+        wall.shape);
+    if (!clear) return &wall;
+  }
+  return nullptr;
+}
+
+// A particle given a place (a file, a lattice, a species' position) inside a [[geometry]] wall: its
+// centre behind the surface or less than half a radius before it (a settled state touches walls by
+// a small overlap; a restart from one is fine).
+void check_clear_of_geometry(const CaseConfig& c, const DemState& s) {
+  const ParticleStore& p = s.particles;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.motion[i] == Motion::wall_bump) continue;
+    if (const DemWall* wall = geometry_in_the_way(s, p.position[i], p.target_radius[i], 0.5))
+      throw InputError(c.path, "geometry." + std::to_string(wall->geometry),
+                       "particle " + std::to_string(p.id[i]) + " of species '" + c.species[p.species[i]].name +
+                           "' at (" + std::to_string(p.position[i].x) + ", " + std::to_string(p.position[i].y) + ", " +
+                           std::to_string(p.position[i].z) + ") lies inside the wall '" + wall->name +
+                           "': move the particle or the wall");
+  }
+}
+
 // Fixed half-spheres centred on the wall plane, square or triangular lattice (section 2.6.3).
 void add_bumps(const CaseConfig& c, DemState& s) {
-  for (const FlatWall& wall : s.walls) {
+  for (const DemWall& wall : s.walls) {
     if (!wall.bumpy) continue;
     const BumpLattice lattice = bump_lattice(c, wall.face);
     SpeciesConfig species;
@@ -163,7 +219,7 @@ void place_random(const CaseConfig& c, double expansion_time, DemState& s, std::
         x[axis] = lo[axis] + margin_lo + unit(rng) * (hi[axis] - lo[axis] - margin_lo - margin_hi);
       }
       if (s.dimension == 2) x.z = disc_plane(c);
-    } while (!clear_of_placed(x, r));
+    } while (!clear_of_placed(x, r) || geometry_in_the_way(s, x, r, 0.0));
     add_particle(s.particles, s.dimension, c.species[sp], sp, c.species[sp].diameter, x,
                  c.species[sp].frozen ? Motion::frozen : Motion::free);
   }
@@ -283,6 +339,7 @@ DemState build_dem_state(const CaseConfig& c) {
   } else {
     place_random(c, d.expansion_time, s, rng);
   }
+  check_clear_of_geometry(c, s);
   thermalise(c, s, rng);
   if (c.particles.init != "file") add_initial_flow(c, s);
   if (s.dimension == 2) confine_to_plane(c, s);

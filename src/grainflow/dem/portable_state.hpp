@@ -37,7 +37,7 @@ template <class State, class Statistics>
 struct PortableContacts {
   using Pair = typename ContactStore<State>::KeptPair;  // by ids, the list's particle first
   struct WallContact {
-    std::uint32_t id, wall;
+    std::uint32_t id, wall, element;
     State state;
   };
   std::vector<Pair> pairs;         // touching pairs

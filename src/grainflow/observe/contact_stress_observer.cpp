@@ -32,7 +32,7 @@ void ContactStressObserver::sample(const Frame& now) {
   // The forces now stand for the interval just ended (a rectangle rule in time, as the kinetic part).
   now.contact_forces([&](std::uint32_t i, int wall, const Vec3& from, const Vec3& force) {
     stress_.add_contact_force(grid, p.position[i], from, force, duration);
-    if (wall >= 0) {
+    if (wall >= 0 && static_cast<std::size_t>(wall) < now.walls.size()) {  // a box face (walls.csv's rows)
       const int axis = now.walls[static_cast<std::size_t>(wall)].axis;
       walls_.add_rolling(wall, force, duration, wall_area(*now.box, axis, now.dimension));
     }

@@ -55,7 +55,7 @@ TheoryInputs theory_inputs(const CaseConfig& c) {
     fail("drive",
          "the theory needs a [drive] on the floor (" + floor_name + "): a still floor gives the bed no energy");
   if (c.drive.face != floor)
-    fail("drive.face", std::string("the driven face is ") + kFaceNames[c.drive.face] + ", not the floor (" +
+    fail("drive.face", std::string("the driven face is ") + (c.drive.face >= 0 ? kFaceNames[c.drive.face] : "none") + ", not the floor (" +
                            floor_name + ") that gravity points at");
   const double amplitude = c.drive.amplitude[axis], frequency = c.drive.frequency[axis];
   const double speed = 2.0 * M_PI * frequency * amplitude;

@@ -1,0 +1,130 @@
+// The soft-sphere engine's wall contacts: each wall's list of the particles near it, and the force
+// loop over that list with the wall's shape inlined. Included by dem_engine_impl.hpp only.
+#pragma once
+
+#include <algorithm>
+#include <variant>
+
+#include "grainflow/dem/dem_engine.hpp"
+#include "grainflow/dem/thread_slices.hpp"
+
+namespace grainflow::dem {
+
+template <class Law, bool Rolling>
+void DemEngine<Law, Rolling>::build_wall_list(std::size_t w) {
+  const ParticleStore& p = s_.particles;
+  const DemWall& wall = s_.walls[w];
+  auto& list = contacts_.walls[w];
+  list.offsets.assign(1, 0);
+  list.particle.clear();
+  const double reach = wall_reach_[w];
+  std::visit(
+      [&](const auto& shape) {
+        for (int e = 0; e < shape.elements(); ++e) {
+          for (std::size_t i = 0; i < p.size(); ++i)
+            if (p.motion[i] == Motion::free && !p.ghost[i] &&
+                shape.contact(e, p.position[i]).gap < p.target_radius[i] + reach)
+              list.particle.push_back(static_cast<std::uint32_t>(i));
+          list.offsets.push_back(static_cast<std::uint32_t>(list.particle.size()));
+        }
+      },
+      wall.shape);
+  list.state.assign(list.size(), State{});
+  list.touching.assign(list.size(), 0);
+  wall_build_[w] = {wall.shift, s_.time};
+}
+
+template <class Law, bool Rolling>
+void DemEngine<Law, Rolling>::refresh_moved_walls() {
+  for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+    const DemWall& wall = s_.walls[w];
+    if (wall.surface_travel(wall_build_[w].shift, wall_build_[w].time, wall.shift, s_.time) <= 0.5 * s_.skin) continue;
+    auto kept = contacts_.take_wall_touching(s_.particles.id, static_cast<int>(w));
+    ContactStore<State>::sort_kept(kept);
+    build_wall_list(w);
+    contacts_.restore_wall(w, kept, s_.particles.id);
+  }
+}
+
+template <class Law, bool Rolling>
+void DemEngine<Law, Rolling>::wall_forces(double dt) {
+  ForceLoopSums all;
+  all.max_ratio = stats_.max_overlap_ratio;
+  wall_force_.resize(s_.walls.size());
+  wall_torque_.resize(s_.walls.size());
+  for (std::size_t w = 0; w < s_.walls.size(); ++w) {
+    const ForceLoopSums sums = std::visit(
+        [&](const auto& shape) {
+          return s_.walls[w].spins() ? wall_forces_on<true>(w, shape, dt) : wall_forces_on<false>(w, shape, dt);
+        },
+        s_.walls[w].shape);
+    wall_force_[w] = sums.force;
+    wall_torque_[w] = sums.torque;
+    all += sums;
+  }
+  stats_.wall_contacts = all.contacts;
+  stats_.wall_collisions += all.begun;
+  stats_.max_overlap_ratio = all.max_ratio;
+  energy_.wall_power += all.boundary_power;
+  energy_.growth_power += all.growth_power;
+}
+
+template <class Law, bool Rolling>
+template <bool Spins, class Shape>
+ForceLoopSums DemEngine<Law, Rolling>::wall_forces_on(std::size_t w, const Shape& shape, double dt) {
+  ParticleStore& p = s_.particles;
+  const DemWall& wall = s_.walls[w];
+  const Params& params = wall_params_[w];
+  auto& list = contacts_.walls[w];
+  const double growth_rate = s_.expansion_rate;
+  ForceLoopSums wall_sums;
+  // Element by element: a particle appears once in an element's list, so the threads' slices of it
+  // never write to the same particle.
+  for (std::size_t e = 0; e < list.elements(); ++e) {
+    const std::uint32_t first = list.offsets[e];
+    const int element = static_cast<int>(e);
+    wall_sums += reduce_slices(
+        threads_, list.offsets[e + 1] - first, ForceLoopSums{},
+        [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
+          ForceLoopSums local;  // in registers, stored once at the slice's end
+          for (std::size_t k = first + begin; k < first + end; ++k) {
+            const std::uint32_t i = list.particle[k];
+            const double ri = p.radius[i];
+            const walls::SurfaceContact sc = shape.contact(element, p.position[i]);
+            if (!wall_in_contact(sc.gap, ri, list.touching[k], params)) {
+              list.touching[k] = 0;
+              continue;
+            }
+            if (!list.touching[k]) {
+              list.touching[k] = 1;
+              list.state[k] = State{};
+              ++local.begun;
+            }
+            const Vec3 point = p.position[i] - sc.gap * sc.normal;
+            const Vec3 surface = Spins ? wall.surface_velocity(point) : wall.velocity;
+            const ContactKinematics c = wall_kinematics(i, surface, sc.normal, sc.gap);
+            const ContactForce f = Law::force(params, law_state(list.state[k]), c, dt);
+            const Vec3 total = f.normal * sc.normal + f.tangential;
+            p.force[i] += total;
+            p.torque[i] -= ri * cross(sc.normal, f.tangential);
+            Vec3 couple;
+            if constexpr (Rolling) {
+              RollingKinematics k_roll = rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal);
+              if constexpr (Spins) k_roll.relative_spin -= wall.angular_velocity;
+              couple = RollingResistance::torque(rolling_.walls[w], list.state[k].rolling, k_roll, dt);
+              p.torque[i] += couple;
+            }
+            local.boundary_power += dot(total, surface);
+            local.force += total;
+            local.torque -= cross(point - wall.origin, total) + couple;  // the reaction, on the wall
+            if (growth_rate > 0.0 && ri < p.target_radius[i]) local.growth_power += f.normal * growth_rate;
+            local.max_ratio = std::max(local.max_ratio, c.overlap / (2.0 * ri));
+            ++local.contacts;
+          }
+          sum = local;
+        });
+  }
+  return wall_sums;
+}
+
+}  // namespace grainflow::dem

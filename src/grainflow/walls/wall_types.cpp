@@ -1,0 +1,38 @@
+#include "grainflow/walls/wall_types.hpp"
+
+#include <array>
+#include <stdexcept>
+
+namespace grainflow::walls {
+namespace {
+
+template <class... Types>
+constexpr std::array<GeometrySchema, sizeof...(Types)> schemas_of(std::variant<Types...>*) {
+  return {GeometrySchema{Types::name, Types::meaning, &Types::read}...};
+}
+constexpr auto kSchemas = schemas_of(static_cast<WallShape*>(nullptr));
+
+template <std::size_t I = 0>
+WallShape shape_named(const std::string& type, const GeometryKeys& keys) {
+  if constexpr (I < std::variant_size_v<WallShape>) {
+    using Type = std::variant_alternative_t<I, WallShape>;
+    if (type == Type::name) return Type::from_keys(keys);
+    return shape_named<I + 1>(type, keys);
+  } else {
+    throw std::logic_error("unknown wall type '" + type + "' (registered: " + wall_type_names() + ")");
+  }
+}
+
+}  // namespace
+
+GeometrySchemas geometry_schemas() { return kSchemas; }
+
+std::string wall_type_names() {
+  std::string text;
+  for (const auto& s : kSchemas) text += (text.empty() ? "" : ", ") + std::string(s.name);
+  return text;
+}
+
+WallShape make_wall_shape(const GeometryConfig& g) { return shape_named(g.type, g.keys); }
+
+}  // namespace grainflow::walls

@@ -1,0 +1,31 @@
+// The wall types a [[geometry]] table may name (geometry.type). Adding a type: its own file (a struct
+// with name, meaning, read, from_keys, elements, contact, moved, spins_in_place, surface_shift and
+// mesh, as plane_wall.hpp) and one entry in WallShape; the case loader, writer, the engine's wall loop
+// (one instantiation per type: no virtual call per contact) and the snapshots follow.
+#pragma once
+
+#include <string>
+#include <variant>
+
+#include "grainflow/config/case_config.hpp"
+#include "grainflow/walls/cone_wall.hpp"
+#include "grainflow/walls/cylinder_wall.hpp"
+#include "grainflow/walls/plane_wall.hpp"
+
+namespace grainflow::walls {
+
+using WallShape = std::variant<PlaneWall, CylinderWall, ConeWall>;
+
+// The case loader's view of every registered type.
+GeometrySchemas geometry_schemas();
+// "plane, cylinder, cone", for messages.
+std::string wall_type_names();
+// The shape a [[geometry]] table describes (its type checked by the loader), at t = 0.
+WallShape make_wall_shape(const GeometryConfig& g);
+
+template <class F>
+decltype(auto) visit_shape(const WallShape& shape, F&& f) {
+  return std::visit(std::forward<F>(f), shape);
+}
+
+}  // namespace grainflow::walls
