@@ -12,8 +12,23 @@
 
 namespace grainflow {
 
+// What a wall does beyond where it is: the servo, the strip layouts and the observers ask for the
+// walls of a shear cell by role, not by face. The box's walls across the shear gradient (y) play
+// them (face_roles); the servo moves both.
+enum class WallRole : unsigned {
+  shear_bottom = 1,  // the low wall across the shear gradient: a Couette cell's bottom, a chute's floor
+  shear_top = 2,     // the high one: a Couette cell's moving top
+};
+// The roles a box face plays.
+constexpr unsigned face_roles(int face) {
+  return face == 2 ? static_cast<unsigned>(WallRole::shear_bottom)
+                   : face == 3 ? static_cast<unsigned>(WallRole::shear_top) : 0u;
+}
+
 struct FaceWall {
   int face = 0;  // axis * 2 + (0 low, 1 high)
+  unsigned roles = 0;  // WallRole bits
+  bool plays(WallRole role) const { return (roles & static_cast<unsigned>(role)) != 0; }
   int axis = 0;
   double inward = 1.0;    // +1 on a low face (normal +e_axis), -1 on a high face
   double position = 0.0;  // m, plane coordinate at time `since`
@@ -31,6 +46,14 @@ struct FaceWall {
   // Distance from the plane (at time t) to a point on the particles' side; negative behind it.
   double distance(const Vec3& x, double t) const { return inward * (x[axis] - at(t)); }
 };
+
+// The index of the wall in `walls` (any engine's walls, or a FaceWalls view) playing `role`, or -1.
+template <class Walls>
+int wall_with_role(const Walls& walls, WallRole role) {
+  for (std::size_t w = 0; w < walls.size(); ++w)
+    if (walls[w].plays(role)) return static_cast<int>(w);
+  return -1;
+}
 
 // A read-only view of an engine's box-face walls as FaceWalls (each engine's wall type derives from
 // it): indices are the engine's, and the view follows the walls as they move.
@@ -61,6 +84,8 @@ class FaceWalls {
   };
   Iterator begin() const { return {this, 0}; }
   Iterator end() const { return {this, count_}; }
+  // The index of the wall playing `role`, or -1.
+  int with_role(WallRole role) const { return wall_with_role(*this, role); }
   // The index of the wall on `face`, or -1.
   int on_face(int face) const {
     for (std::size_t w = 0; w < count_; ++w)

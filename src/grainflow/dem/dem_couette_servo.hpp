@@ -21,10 +21,8 @@ class DemCouetteServo {
   DemCouetteServo() = default;
   explicit DemCouetteServo(const DemState& s) {
     if (!s.servo.config.enabled) return;
-    for (std::size_t w = 0; w < s.walls.size(); ++w) {
-      if (s.walls[w].face == 2) bottom_ = static_cast<int>(w);
-      if (s.walls[w].face == 3) top_ = static_cast<int>(w);
-    }
+    bottom_ = wall_with_role(s.walls, WallRole::shear_bottom);
+    top_ = wall_with_role(s.walls, WallRole::shear_top);
     if (bottom_ < 0 || top_ < 0) throw std::invalid_argument("DemCouetteServo: the servo needs walls at ylo and yhi");
     gap_ = gap(s);
     shear_rate_ = (s.walls[top_].velocity.x - s.walls[bottom_].velocity.x) / gap_;

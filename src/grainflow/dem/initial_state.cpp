@@ -46,6 +46,7 @@ void add_walls(const CaseConfig& c, DemState& s) {
     const WallConfig& w = c.walls[f];
     DemWall wall;
     wall.face = f;
+    wall.roles = face_roles(f);
     wall.axis = face_axis(f);
     wall.inward = face_is_high(f) ? -1.0 : 1.0;
     wall.base_position = face_is_high(f) ? c.domain.hi[wall.axis] : c.domain.lo[wall.axis];

@@ -24,10 +24,8 @@ class CouetteServo {
   explicit CouetteServo(const EdmdState& s) : width_ref_(s.box.length(0)), width_since_(s.time) {
     wall_normal_impulse_.assign(s.walls.size(), 0.0);
     if (!s.servo.enabled) return;
-    for (std::size_t w = 0; w < s.walls.size(); ++w) {
-      if (s.walls[w].face == 2) bottom_wall_ = static_cast<int>(w);
-      if (s.walls[w].face == 3) top_wall_ = static_cast<int>(w);
-    }
+    bottom_wall_ = wall_with_role(s.walls, WallRole::shear_bottom);
+    top_wall_ = wall_with_role(s.walls, WallRole::shear_top);
     const double gap = gap_at(s, s.time);
     aspect_ = s.box.length(0) / gap;
     shear_rate_ = (s.walls[top_wall_].velocity.x - s.walls[bottom_wall_].velocity.x) / gap;

@@ -193,6 +193,7 @@ EdmdState build_edmd_state(const CaseConfig& c) {
     const WallConfig& w = c.walls[f];
     EdmdWall wall;
     wall.face = f;
+    wall.roles = face_roles(f);
     wall.axis = face_axis(f);
     wall.inward = face_is_high(f) ? -1.0 : 1.0;
     wall.position = face_is_high(f) ? c.domain.hi[wall.axis] : c.domain.lo[wall.axis];

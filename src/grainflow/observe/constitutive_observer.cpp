@@ -110,7 +110,8 @@ void write_constitutive(const std::string& path, const CaseConfig& c, int dimens
 
 void ConstitutiveObserver::write(const Frame& last, OutputSink& out) {
   if (!out.writes || profiles_->samples() == 0) return;
-  const bool wall_below = last.walls.on_face(2) >= 0, wall_above = last.walls.on_face(3) >= 0;
+  const bool wall_below = last.walls.with_role(WallRole::shear_bottom) >= 0,
+             wall_above = last.walls.with_role(WallRole::shear_top) >= 0;
   write_constitutive(out.directory + "/constitutive.csv", *c_, last.dimension, profiles_->strip_kinematics(),
                      stresses_->strip_stresses(), wall_below, wall_above);
 }

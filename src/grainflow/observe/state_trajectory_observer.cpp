@@ -24,10 +24,8 @@ StateTrajectoryObserver::StateTrajectoryObserver(const RunContext& run, const Fr
   for (auto id : p.id) largest = std::max(largest, id);
   column_of_id_.assign(p.size() == 0 ? 0 : largest + 1, -1);
   for (std::size_t k = 0; k < ids.size(); ++k) column_of_id_[ids[k]] = static_cast<std::int32_t>(k);
-  for (std::size_t w = 0; w < s.walls.size(); ++w) {
-    if (s.walls[w].face == 2) wall_lo_ = static_cast<int>(w);
-    if (s.walls[w].face == 3) wall_hi_ = static_cast<int>(w);
-  }
+  wall_lo_ = s.walls.with_role(WallRole::shear_bottom);
+  wall_hi_ = s.walls.with_role(WallRole::shear_top);
 
   // Per followed particle: id and radius; the rotational inertia factor I / (m R^2) is one number.
   std::vector<double> radius(followed_, 0.0);

@@ -82,7 +82,7 @@ void write_wall_file(const std::string& path, const std::vector<WallLoad>& loads
 
 Vec3 top_wall_row(const std::vector<WallLoad>& loads, const FaceWalls& walls, bool between_walls) {
   for (std::size_t w = 0; w < loads.size(); ++w)
-    if (between_walls && walls[w].face == 3) return loads[w].row;
+    if (between_walls && walls[w].plays(WallRole::shear_top)) return loads[w].row;
   return {};
 }
 

@@ -20,10 +20,8 @@ class StripLayout {
   static constexpr int kMaxStrips = 1000;  // block-averaged sums keep up to 512 copies of every strip
 
   StripLayout(const CaseConfig& c, const Frame& s) : dimension_(s.dimension), lees_edwards_rate_(c.lees_edwards_rate) {
-    for (std::size_t w = 0; w < s.walls.size(); ++w) {
-      if (s.walls[w].face == 2) bottom_ = static_cast<int>(w);
-      if (s.walls[w].face == 3) top_ = static_cast<int>(w);
-    }
+    bottom_ = s.walls.with_role(WallRole::shear_bottom);
+    top_ = s.walls.with_role(WallRole::shear_top);
     double thickness = c.output.zone_thickness > 0.0 ? c.output.zone_thickness : c.species.front().diameter;
     const auto [lo, hi] = bounds(s, s.time);
     const double extent = top_ >= 0 ? hi - lo : c.domain.hi[kAxis] - lo;

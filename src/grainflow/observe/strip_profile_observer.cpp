@@ -47,10 +47,8 @@ StripProfileObserver::StripProfileObserver(const RunContext& run, const Frame& s
       interval_(c_.output.profile_interval > 0.0 ? c_.output.profile_interval : c_.output.interval / 10.0),
       first_sample_(kNaN) {
   next_ = first_grid_index(s.time, interval_);
-  for (std::size_t w = 0; w < s.walls.size(); ++w) {
-    if (s.walls[w].face == 2) bottom_wall_ = static_cast<int>(w);
-    if (s.walls[w].face == 3) top_wall_ = static_cast<int>(w);
-  }
+  bottom_wall_ = s.walls.with_role(WallRole::shear_bottom);
+  top_wall_ = s.walls.with_role(WallRole::shear_top);
   chute_ = top_wall_ < 0 && c_.gravity.x != 0.0 && c_.gravity.y < 0.0;
 }
 
