@@ -115,11 +115,24 @@ void PvdSeries::add_piece(const ParticleStore& particles, double time, int rank,
   write_index();
 }
 
+std::string PvdSeries::part_file(const Part& part, std::size_t index) {
+  if (!part.per_snapshot) return part.stem + ".vtp";
+  char suffix[32];
+  std::snprintf(suffix, sizeof suffix, "_%06zu.vtp", index);
+  return part.stem + suffix;
+}
+
 void PvdSeries::write_index() const {
   write_atomically(directory_ + "/particles.pvd", [&](std::ostream& out) {
     out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
-    for (const auto& [t, file] : entries_)
+    for (std::size_t k = 0; k < entries_.size(); ++k) {
+      const auto& [t, file] = entries_[k];
       out << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
+      // Parts 1, 2, ...: ParaView shows them with the particles at the same time.
+      for (std::size_t p = 0; p < parts_.size(); ++p)
+        out << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"" << p + 1 << "\" file=\""
+            << part_file(parts_[p], k) << "\"/>\n";
+    }
     out << "  </Collection>\n</VTKFile>\n";
   });
 }

@@ -20,7 +20,18 @@ void write_pvtu(const std::string& path, const std::vector<std::string>& pieces)
 
 class PvdSeries {
  public:
+  // A further data set shown with the particles at every time (a wall): `stem`_<index>.vtp at each
+  // snapshot, or `stem`.vtp for one that does not move.
+  struct Part {
+    std::string stem;
+    bool per_snapshot = false;
+  };
+
   explicit PvdSeries(std::string directory) : directory_(std::move(directory)) {}
+  // The parts the index lists beside each snapshot's particles (their files are the caller's).
+  void set_parts(std::vector<Part> parts) { parts_ = std::move(parts); }
+  // The file of `part` at snapshot `index`.
+  static std::string part_file(const Part& part, std::size_t index);
   // Writes snapshot `index` at `time` and rewrites the index (atomically) to include it.
   void add(const ParticleStore& particles, double time);
   // MPI: every rank calls this at the same snapshot with its own particles; rank 0 also writes the
@@ -42,6 +53,7 @@ class PvdSeries {
   void write_index() const;
   std::string directory_;
   std::vector<std::pair<double, std::string>> entries_;
+  std::vector<Part> parts_;
 };
 
 }  // namespace grainflow::io

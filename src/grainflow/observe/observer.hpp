@@ -17,6 +17,7 @@
 
 #include "grainflow/core/face_wall.hpp"
 #include "grainflow/core/periodic_box.hpp"
+#include "grainflow/core/vec3.hpp"
 #include "grainflow/io/json_writer.hpp"
 #include "grainflow/io/state_archive.hpp"
 #include "grainflow/engine_api/collision_observer.hpp"
@@ -36,6 +37,14 @@ inline constexpr double kNoSampleTime = std::numeric_limits<double>::infinity();
 inline long first_grid_index(double time, double interval) {
   return std::max(1L, static_cast<long>(std::floor(time / interval)) + 1);
 }
+
+// What the particles exert on one [[geometry]] wall at the last force evaluation: the force and the
+// torque about the wall's motion origin where it is now (this MPI rank's share).
+struct GeometryLoad {
+  std::string name;
+  Vec3 force;   // N
+  Vec3 torque;  // N m
+};
 
 struct Frame {
   int dimension = 3;
@@ -58,6 +67,8 @@ struct Frame {
   // the bump's centre), so that its load is the wall's.
   using ContactForceVisit = std::function<void(std::uint32_t, int, const Vec3&, const Vec3&)>;
   std::function<void(const ContactForceVisit&)> contact_forces;
+  // Soft spheres: each [[geometry]] wall's load, in the case's order; unset without an engine.
+  std::function<std::vector<GeometryLoad>()> geometry_loads;
 };
 
 // Where an observer writes at the end: files in `directory` (on rank 0 only: `writes`), keys of
@@ -77,6 +88,8 @@ class Observer {
   // The next time it wants a frame (an event-driven run advances there); kNoSampleTime: none.
   virtual double next_time() const { return kNoSampleTime; }
   virtual void sample(const Frame& now) = 0;
+  // A fresh run's initial state, where the time series takes its t = 0 row (soft spheres).
+  virtual void sample_start(const Frame& now) { (void)now; }
   // Soft spheres on several MPI ranks: true when the sample at `step` reads contact forces, whose
   // damping needs the ghosts' velocities at the step's end (the run refreshes them first; they
   // are half a step old otherwise).

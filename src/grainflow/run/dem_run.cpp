@@ -5,6 +5,7 @@
 #include "grainflow/run/dem_parallel_view.hpp"
 #include "grainflow/run/dem_portable_state.hpp"
 #include "grainflow/run/dem_timeseries.hpp"
+#include "grainflow/run/dem_wall_outputs.hpp"
 #include "grainflow/parallel/communicator.hpp"
 
 #include <algorithm>
@@ -106,6 +107,7 @@ class DemRun {
   dem::PortableParticles portable_particles;
   std::string dir;
   std::optional<io::PvdSeries> snapshots;
+  std::optional<WallSnapshots> wall_snapshots;  // [[geometry]] walls beside the particles
   int axis = 1;
   double area = 1.0;
   observe::RunContext context;
@@ -166,6 +168,10 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   fs::create_directories(options.output_directory);
   dir = options.output_directory;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
+  if (snapshots && !c.geometry.empty()) {
+    wall_snapshots.emplace(dir + "/snapshots", initial.walls);
+    snapshots->set_parts(wall_snapshots->parts());
+  }
 
   axis = derived.gravity_axis;
   total_steps = static_cast<long>(std::llround(c.run.duration / dt));
@@ -192,6 +198,7 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
 }
 
 void DemRun::snapshot(const dem::DemState& st) {
+  if (wall_snapshots && writes) wall_snapshots->write(st.walls, st.box, snapshots->size());
   if (ranks) snapshots->add_piece(st.particles, st.time, comm.rank(), comm.size());
   else snapshots->add(st.particles, st.time);
 }
@@ -202,6 +209,7 @@ void DemRun::bind_frame(E& e) {
   frame = frame_of(e.state());
   frame.coordination = [&e] { return e.coordination(); };
   frame.contact_forces = [&e](const observe::Frame::ContactForceVisit& visit) { e.for_each_contact_force(visit); };
+  frame.geometry_loads = [&e] { return geometry_loads(e); };
 }
 
 template <class E>
@@ -351,6 +359,7 @@ void DemRun::start(E& e) {
     first_step = e.state().step;
   } else {
     record(e);
+    for (auto& o : observers) o->sample_start(frame_now(e));
     if (snapshots) snapshot(e.state());
   }
 }

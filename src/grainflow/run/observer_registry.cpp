@@ -7,6 +7,7 @@
 #include "grainflow/observe/constitutive_observer.hpp"
 #include "grainflow/observe/contact_stress_observer.hpp"
 #include "grainflow/observe/convection_observer.hpp"
+#include "grainflow/observe/geometry_observer.hpp"
 #include "grainflow/observe/state_trajectory_observer.hpp"
 #include "grainflow/observe/strip_profile_observer.hpp"
 #include "grainflow/observe/tracer_observer.hpp"
@@ -65,6 +66,10 @@ constexpr Registered kObservers[] = {
     {"coarse_grain", EngineKind::dem, nullptr, [](const CaseConfig& c) { return c.coarse_grain.enabled; },
      [](const observe::RunContext& run, const observe::Frame& start, const std::vector<Made>&) -> Made {
        return std::make_unique<observe::CoarseGrainObserver>(run, start);
+     }},
+    {"geometry", EngineKind::dem, nullptr, [](const CaseConfig& c) { return !c.geometry.empty(); },
+     [](const observe::RunContext& run, const observe::Frame&, const std::vector<Made>&) -> Made {
+       return std::make_unique<observe::GeometryObserver>(run);
      }},
     {"profiles", EngineKind::dem, nullptr, [](const CaseConfig&) { return true; },
      [](const observe::RunContext& run, const observe::Frame&, const std::vector<Made>&) -> Made {
