@@ -57,6 +57,7 @@ def main():
                              "--set", f"run.duration={DURATION}",
                              "--set", "geometry.0.motion.angular_velocity=[0,0,0]",
                              "--set", f"species.0.count={COUNT}",
+                             "--set", f"geometry.0.radius={RADIUS}",
                              "--set", "particles.region_hi=[15,-6,3]",
                              "--set", "output.snapshot_interval=10")
         if not check(status == 0, f"still drum: exited {status}: {err.strip()}"):

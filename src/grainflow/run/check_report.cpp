@@ -89,6 +89,36 @@ void print_expansion(const CaseConfig& c, const dem::DerivedQuantities& d, doubl
 
 }  // namespace
 
+// Each [[geometry]] wall: its type and keys, and how it moves; a turning wall's Froude number
+// w^2 R / g about its axis where the type has a radius (a drum's regime, Mellmann 2001).
+void print_geometry(const CaseConfig& c, std::ostream& out) {
+  for (const GeometryConfig& g : c.geometry) {
+    std::string keys;
+    for (const GeometryKey& k : g.keys.entries()) {
+      keys += (keys.empty() ? "" : ", ") + k.key + " = ";
+      if (k.kind == GeometryKey::Kind::vector) keys += fmt::format("[{:.6g}, {:.6g}, {:.6g}]", k.value.x, k.value.y, k.value.z);
+      else if (k.kind == GeometryKey::Kind::boolean) keys += k.value.x != 0.0 ? "true" : "false";
+      else keys += fmt::format("{:.6g}", k.value.x);
+    }
+    out << fmt::format("  geometry {:<19} {}: {}\n", g.name, g.type, keys);
+    const GeometryMotionConfig& m = g.motion;
+    if (!m.moves()) continue;
+    std::string motion;
+    if (m.velocity != Vec3{}) motion += fmt::format("velocity [{:.6g}, {:.6g}, {:.6g}] m/s", m.velocity.x, m.velocity.y, m.velocity.z);
+    if (m.drive) motion += std::string(motion.empty() ? "" : ", ") + "follows [drive]";
+    if (m.angular_velocity != Vec3{}) {
+      motion += fmt::format("{}turning at [{:.6g}, {:.6g}, {:.6g}] rad/s about [{:.6g}, {:.6g}, {:.6g}]",
+                            motion.empty() ? "" : ", ", m.angular_velocity.x, m.angular_velocity.y,
+                            m.angular_velocity.z, m.origin.x, m.origin.y, m.origin.z);
+      const double g_norm = norm(c.gravity);
+      if (g.keys.has("radius") && g_norm > 0.0)
+        motion += fmt::format(" (Fr = w^2 R / g = {:.4g})",
+                              dot(m.angular_velocity, m.angular_velocity) * g.keys.number("radius") / g_norm);
+    }
+    out << fmt::format("  {:<28}{}\n", "", motion);
+  }
+}
+
 void print_check(const CaseConfig& c, std::ostream& out) {
   if (c.engine.kind == "edmd") {
     print_edmd_check(c, out);
@@ -127,6 +157,7 @@ void print_check(const CaseConfig& c, std::ostream& out) {
         "{:.3g})\n",
         *d.hertz_k1, ref.youngs_modulus, ref.poisson_ratio, d.normal_stiffness / *d.hertz_k1);
   out << fmt::format("  mass hold-up m_t            {:.6g}  (eq. 4-1-3)\n", d.mass_holdup);
+  print_geometry(c, out);
 }
 
 int check_case(const std::string& case_path, const std::vector<std::string>& overrides, std::ostream& out) {
