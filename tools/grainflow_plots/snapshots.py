@@ -42,7 +42,8 @@ def plot(outdir, info):
 
 
 def snapshot_list(folder):
-    """[(time or None, path)] in time order: from particles.pvd, else the VTU files by name."""
+    """[(time or None, path)] of the particles' files in time order: from particles.pvd (part 0; the
+    walls' surfaces are further parts), else the VTU files by name."""
     pvd = os.path.join(folder, "particles.pvd")
     if os.path.isfile(pvd):
         try:
@@ -58,6 +59,8 @@ def snapshot_list(folder):
             name = data_set.get("file")
             if not name:
                 raise PlotError(f"{pvd}: a DataSet has no file attribute")
+            if data_set.get("part", "0") != "0":  # the walls' surfaces (.vtp) beside the particles
+                continue
             path = os.path.join(folder, name)
             if os.path.isfile(path):  # an entry of an interrupted run may be missing
                 entries.append((time, path))

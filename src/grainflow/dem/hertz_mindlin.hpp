@@ -56,7 +56,9 @@ struct HertzMindlin {
   // The c whose scaled impact rebounds with `restitution` (to 1e-12).
   static double damping_for(double restitution);
 
-  static ContactForce force(const Params& p, State& s, const ContactKinematics& c, double dt) {
+  // Always inlined: the pair loop is mostly this function, and with the wall loops beside it the
+  // compiler would otherwise call it (~10 % of a dense flow's step, measured).
+  [[gnu::always_inline]] static ContactForce force(const Params& p, State& s, const ContactKinematics& c, double dt) {
     ContactForce out;
     const double contact_radius = std::sqrt(c.effective_radius * c.overlap);  // a = sqrt(R* delta)
     const double normal_stiffness = 2.0 * p.e_star * contact_radius;          // S_n = dF/d delta
@@ -78,7 +80,7 @@ struct HertzMindlin {
   // shrinking patch releases its share), so that no energy is created; the new slip adds S_t dS.
   // Spring and dashpot together are capped at `limit` (Coulomb). Returns the tangential force on i;
   // `stored` becomes the spring's part of it.
-  static Vec3 mindlin_tangential(const Params& p, Vec3& stored, double a, double unloading, const ContactKinematics& c,
+  [[gnu::always_inline]] static Vec3 mindlin_tangential(const Params& p, Vec3& stored, double a, double unloading, const ContactKinematics& c,
                                  double dt, double limit) {
     const double tangential_stiffness = 8.0 * p.g_star * a;
     Vec3 spring = stored - dot(stored, c.normal) * c.normal;
