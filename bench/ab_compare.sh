@@ -21,17 +21,7 @@ A=build/release/grainflow
 [ -x "$A" ] || { echo "ab_compare: $A is missing: build the working tree first (make release)" >&2; exit 2; }
 [ -f ../shared/bench/chute_32k.csv ] || { echo "ab_compare: ../shared/bench/chute_32k.csv (LAMMPS bench/data.chute) is missing" >&2; exit 2; }
 
-sha=$(git rev-parse --verify "$BASE^{commit}")
-dir=build/ab/$sha
-B=$dir/build/grainflow
-if [ ! -x "$B" ]; then
-  echo "ab_compare: building $BASE ($sha) in $dir" >&2
-  rm -rf "$dir"
-  mkdir -p "$dir/src"
-  git archive "$sha" | tar -x -C "$dir/src"
-  cmake -S "$dir/src" -B "$dir/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DGRAINFLOW_TESTS=OFF -DGRAINFLOW_BENCHMARKS=OFF >/dev/null
-  cmake --build "$dir/build" -j "$(nproc)" --target grainflow >/dev/null
-fi
+B=$(bench/base_build.sh "$BASE")
 
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT

@@ -10,17 +10,7 @@ BASE=${1:?usage: bench/geometry_walls.sh BASE_COMMIT [ROUNDS]}
 ROUNDS=${2:-5}
 A=build/release/grainflow
 [ -x "$A" ] || { echo "geometry_walls: $A is missing: build the working tree first (make release)" >&2; exit 2; }
-sha=$(git rev-parse --verify "$BASE^{commit}")
-dir=build/ab/$sha
-B=$dir/build/grainflow
-if [ ! -x "$B" ]; then
-  echo "geometry_walls: building $BASE ($sha) in $dir" >&2
-  rm -rf "$dir"
-  mkdir -p "$dir/src"
-  git archive "$sha" | tar -x -C "$dir/src"
-  cmake -S "$dir/src" -B "$dir/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DGRAINFLOW_TESTS=OFF -DGRAINFLOW_BENCHMARKS=OFF >/dev/null
-  cmake --build "$dir/build" -j "$(nproc)" --target grainflow >/dev/null
-fi
+B=$(bench/base_build.sh "$BASE")
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for round in $(seq "$ROUNDS"); do

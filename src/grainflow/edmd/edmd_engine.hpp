@@ -301,7 +301,7 @@ class EdmdEngine {
       if (rolls(i) && rolling_.wall(i) == static_cast<int>(w)) continue;  // rolling on it: no bounces
       const EdmdWall& wall = s_.walls[w];
       const int a = wall.axis;
-      const double gap = wall.inward * (xi[a] - wall.at(now)) - ri;
+      const double gap = wall.distance(xi, now) - ri;
       const double t = closing_time(gap, wall.inward * (vi[a] - wall.velocity[a]), wall.inward * ai[a]);
       if (t < best) {
         best = t;
@@ -466,7 +466,7 @@ class EdmdEngine {
                      wall.velocity, recent ? tc_.elastic() : wall.restitution, condition);
     servo_.add_normal_impulse(w, dot(impulse, normal));
     if (s_.separation_gap > 0.0) [[unlikely]] {  // Campbell: 1.00001 R from the wall
-      const double gap = wall.inward * (flight_[i].x[wall.axis] - wall.at(s_.time));
+      const double gap = wall.distance(flight_[i].x, s_.time);
       const double target = (1.0 + s_.separation_gap) * p.radius[i];
       if (gap < target) shift(i, normal * (target - gap));
     }

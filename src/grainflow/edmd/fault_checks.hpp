@@ -85,9 +85,8 @@ inline void check_faults(const EdmdState& s) {
                      " s; likely cause: a collision of two particles at the same place (zero separation) or a "
                      "wall or servo update that produced an infinite speed");
   for (const EdmdWall& wall : s.walls) {
-    const double plane = wall.at(s.time);
     for (std::size_t i = 0; i < p.size(); ++i) {
-      const double gap = wall.inward * (p.position[i][wall.axis] - plane);
+      const double gap = wall.distance(p.position[i], s.time);
       if (gap < -2.0 * p.radius[i])
         throw RunError(describe_particle(s, i) + " went through the " + kFaceNames[wall.face] +
                        " wall at t = " + format("%.9g", s.time) + " s: its centre lies " + format("%.4g", -gap) +

@@ -1,15 +1,13 @@
 #include "grainflow/walls/cone_wall.hpp"
 
 #include "grainflow/config/toml_reader.hpp"
+#include "grainflow/walls/axis_keys.hpp"
 #include "grainflow/walls/axisymmetric_mesh.hpp"
 
 namespace grainflow::walls {
 
 void ConeWall::read(TomlReader& r, GeometryKeys& out) {
-  out.set_vector("point", r.required_vec3("point"));
-  const Vec3 axis = r.required_vec3("axis");
-  if (!(norm(axis) > 0.0)) r.fail("axis", "must not be the zero vector");
-  out.set_vector("axis", axis * (1.0 / norm(axis)));
+  read_point_and_axis(r, out);
   const double length = r.required_number("length");
   if (!(length > 0.0)) r.fail("length", "must be positive");
   out.set_number("length", length);
@@ -34,11 +32,7 @@ ConeWall ConeWall::from_keys(const GeometryKeys& k) {
 }
 
 bool ConeWall::spins_in_place(const Vec3& w, const Vec3& origin) const {
-  const double rate = norm(w);
-  if (rate == 0.0) return true;
-  const Vec3 off = origin - point;
-  return norm(cross(w * (1.0 / rate), axis)) < 1e-12 &&
-         norm(off - dot(off, axis) * axis) < 1e-12 * (1.0 + std::max(radius_start, radius_end));
+  return turns_about_axis(w, origin, point, axis, std::max(radius_start, radius_end));
 }
 
 SurfaceMesh ConeWall::mesh(const Vec3&, const Vec3&) const {

@@ -4,15 +4,13 @@
 #include <cmath>
 
 #include "grainflow/config/toml_reader.hpp"
+#include "grainflow/walls/axis_keys.hpp"
 #include "grainflow/walls/axisymmetric_mesh.hpp"
 
 namespace grainflow::walls {
 
 void CylinderWall::read(TomlReader& r, GeometryKeys& out) {
-  out.set_vector("point", r.required_vec3("point"));
-  const Vec3 axis = r.required_vec3("axis");
-  if (!(norm(axis) > 0.0)) r.fail("axis", "must not be the zero vector");
-  out.set_vector("axis", axis * (1.0 / norm(axis)));
+  read_point_and_axis(r, out);
   const double radius = r.required_number("radius");
   if (!(radius > 0.0)) r.fail("radius", "must be positive");
   out.set_number("radius", radius);
@@ -39,10 +37,7 @@ CylinderWall CylinderWall::from_keys(const GeometryKeys& k) {
 }
 
 bool CylinderWall::spins_in_place(const Vec3& w, const Vec3& origin) const {
-  const double rate = norm(w);
-  if (rate == 0.0) return true;
-  const Vec3 off = origin - point;  // about its own axis only
-  return norm(cross(w * (1.0 / rate), axis)) < 1e-12 && norm(off - dot(off, axis) * axis) < 1e-12 * (1.0 + radius);
+  return turns_about_axis(w, origin, point, axis, radius);
 }
 
 SurfaceMesh CylinderWall::mesh(const Vec3& lo, const Vec3& hi) const {
