@@ -274,6 +274,14 @@ TEST(GeometryWalls, BadGeometryIsRefusedNamingTheKey) {
                                     "radius_start = 0.0\nradius_end = 0.0");
   expect_refused(cone, "geometry.0.radius_end", "both are 0");
   expect_refused(replaced(bed, "[drive]", "[drive0]"), "geometry.1.motion.drive", "[drive]");
+  // Discs: a plane whose normal leaves the x-y plane would push them off it.
+  try {
+    load_case_from_string(replaced(bed, "normal = [0.2, 1.0, 0.0]", "normal = [0.2, 1.0, 0.3]"), "discs.toml",
+                          {"engine.dimension=2"});
+    ADD_FAILURE() << "a plane tilted out of the discs' plane was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("geometry.1.normal"), std::string::npos) << e.what();
+  }
   // A particle placed behind the drum's wall.
   const test::ParticleFile csv("outside.csv", "glass,0.0,-0.0205,0.003,0,0,0\n");
   std::string placed = replaced(bed, "init = \"random\"", "init = \"file\"\nfile = \"" + csv.path() + "\"");

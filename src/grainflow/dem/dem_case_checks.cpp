@@ -45,6 +45,24 @@ void validate_planar(const CaseConfig& c) {
     if (c.domain.faces[f] == FaceKind::bumpy && c.walls[f].lattice == "triangular")
       fail(c, wall + ".lattice", "in 2D a bumpy wall is one row of half-discs: \"triangular\" has no meaning");
   }
+  // A wall of any shape keeps every contact normal in the plane: a plane's normal in it, a
+  // cylinder's axis across it (a circle), a cone not at all; it moves in the plane, turns about z.
+  for (std::size_t g = 0; g < c.geometry.size(); ++g) {
+    const GeometryConfig& geometry = c.geometry[g];
+    const std::string key = "geometry." + std::to_string(g);
+    const std::string why = "in 2D (discs in the x-y plane) ";
+    if (geometry.type == "plane" && geometry.keys.vector("normal").z != 0.0)
+      fail(c, key + ".normal", why + "a plane's normal lies in the plane: its z component must be 0");
+    if (geometry.type == "cylinder") {
+      const Vec3 axis = geometry.keys.vector("axis");
+      if (axis.x != 0.0 || axis.y != 0.0) fail(c, key + ".axis", why + "a cylinder's axis is along z (a circle)");
+    }
+    if (geometry.type == "cone") fail(c, key + ".type", why + "a cone would push discs off their plane");
+    if (geometry.motion.velocity.z != 0.0)
+      fail(c, key + ".motion.velocity", why + "the z component must be 0");
+    if (geometry.motion.angular_velocity.x != 0.0 || geometry.motion.angular_velocity.y != 0.0)
+      fail(c, key + ".motion.angular_velocity", why + "walls turn about z only");
+  }
 }
 
 // Lees–Edwards shear (flow x, gradient y): the sliding rows' search needs four cells of one list
