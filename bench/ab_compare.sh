@@ -22,6 +22,7 @@ A=build/release/grainflow
 [ -f ../shared/bench/chute_32k.csv ] || { echo "ab_compare: ../shared/bench/chute_32k.csv (LAMMPS bench/data.chute) is missing" >&2; exit 2; }
 
 B=$(bench/base_build.sh "$BASE")
+sha=$(git rev-parse --verify "$BASE^{commit}")
 
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
