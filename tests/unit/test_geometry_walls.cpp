@@ -265,7 +265,7 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 TEST(GeometryWalls, BadGeometryIsRefusedNamingTheKey) {
   const std::string bed = drum_bed();
   expect_refused(replaced(bed, "axis = [0.0, 0.0, 1.0]", "axis = [0.0, 0.0, 0.0]"), "geometry.0.axis", "zero vector");
-  expect_refused(replaced(bed, "radius = 0.02", "radius = -0.02"), "geometry.0.radius", "positive");
+  expect_refused(replaced(bed, "radius = 0.02", "radius = -0.02"), "geometry.0.radius", "geometry 'drum' (cylinder)");
   expect_refused(replaced(bed, "type = \"cylinder\"", "type = \"torus\""), "geometry.0.type",
                  "registered: plane, cylinder, cone");
   expect_refused(replaced(bed, "name = \"floor\"", "name = \"drum\""), "geometry.1.name", "names two geometries");

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "grainflow/config/face_kinds.hpp"
+#include "grainflow/core/error.hpp"
 #include "grainflow/config/wall_conditions.hpp"
 
 namespace grainflow {
@@ -72,8 +73,12 @@ void read_geometry(TomlReader& top, CaseConfig& c, ContactSchemas schemas, Geome
     for (const auto& t : types)
       if (t.name == g.type) type = &t;
     if (!type) r.fail("type", "unknown wall type '" + g.type + "' (registered: " + names + ")");
-    type->read(r, g.keys);
-    read_wall_material(r, g.material, c, schemas);
+    try {  // the keys' errors name the geometry too: its index alone is hard to find in a long case
+      type->read(r, g.keys);
+      read_wall_material(r, g.material, c, schemas);
+    } catch (const InputError& e) {
+      throw InputError(e.file(), e.key(), "geometry '" + g.name + "' (" + g.type + "): " + e.reason());
+    }
     if (r.has("motion")) {
       TomlReader m = r.table("motion");
       g.motion.velocity = m.vec3("velocity", {});
