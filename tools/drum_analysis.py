@@ -15,6 +15,11 @@ Usage:
       default): the mean vertical velocity in N equal-area annuli (8) over the later half of the
       run's snapshots, the top and bottom D diameters (3) of the bed left out; printed and written
       to RUN_DIR/convection_profile.csv.
+  /usr/bin/python3 tools/drum_analysis.py --drift RUN_DIR --radius R [--start T] [--center X,Z]
+      the same bed's convection from snapshots one drive period apart (output.snapshot_interval =
+      1 / f, as cases/geometry/vibrated_cylinder.toml writes them): the grains' mean rise per period
+      in the wall layer and four annuli inside it, from the snapshots at t >= T (default: the later
+      half); printed and written to RUN_DIR/convection_drift.csv.
 
 The criteria and their thresholds are in tools/grainflow_plots/drum.py. Needs Debian's
 python3-numpy and python3-matplotlib. Exit status 1 when an input is missing or malformed, 2 for
@@ -28,7 +33,8 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from grainflow_plots.common import PlotError  # noqa: E402
-from grainflow_plots.drum import axial_convection_profile  # noqa: E402
+from grainflow_plots.drum import axial_convection_profile, axial_drift_profile  # noqa: E402
+from grainflow_plots.snapshots import read_vtu, snapshot_list  # noqa: E402
 from grainflow_plots.drum_sweep import COLUMNS, MAX_SNAPSHOTS, analyze_sweep, steady_snapshots  # noqa: E402
 
 
@@ -37,6 +43,8 @@ def parse(argv):
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("folder", nargs="?", help="the sweep folder (SWEEP_DIR)")
     parser.add_argument("--convection", metavar="RUN_DIR", help="a vibrated cylindrical bed's run folder")
+    parser.add_argument("--drift", metavar="RUN_DIR", help="a vibrated cylindrical bed's run folder (phase-locked)")
+    parser.add_argument("--start", type=float, help="with --drift: the first snapshot's time (s)")
     parser.add_argument("--radius", type=float, help="the cylinder's radius (m); needed with --convection")
     parser.add_argument("--gravity", type=float, help="|g| (m/s^2), instead of the case file's")
     parser.add_argument("--max-snapshots", type=int, default=MAX_SNAPSHOTS,
@@ -47,10 +55,10 @@ def parse(argv):
     parser.add_argument("--subtract-bed-motion", action="store_true",
                         help="remove each snapshot's mean vertical velocity of the bulk (the floor's motion)")
     options = parser.parse_args(argv)
-    if (options.folder is None) == (options.convection is None):
-        parser.error("give either SWEEP_DIR or --convection RUN_DIR")
-    if options.convection is not None and options.radius is None:
-        parser.error("--convection needs --radius")
+    if (options.folder is not None) + (options.convection is not None) + (options.drift is not None) != 1:
+        parser.error("give one of SWEEP_DIR, --convection RUN_DIR or --drift RUN_DIR")
+    if (options.convection is not None or options.drift is not None) and options.radius is None:
+        parser.error("--convection and --drift need --radius")
     return options
 
 
@@ -78,7 +86,6 @@ def convection(options):
     r_mid, mean_vy, count = axial_convection_profile(snapshots, options.radius, center, options.annuli,
                                                      options.exclude, options.subtract_bed_motion)
     path = os.path.join(options.convection, "convection_profile.csv")
-    temporary = f"{path}.tmp-{os.getpid()}"
     lines = [f"# radial convection profile of {os.path.basename(os.path.normpath(options.convection))}: "
              f"{options.annuli} equal-area annuli of a cylinder of radius {options.radius:g} m (axis along y through "
              f"x, z = {center[0]:g}, {center[1]:g}), {len(snapshots)} snapshots (the later half), the top and bottom "
@@ -87,6 +94,14 @@ def convection(options):
              "# units: r_mid m, mean_vy m/s, count grain samples",
              "r_mid,mean_vy,count"]
     lines += [f"{r:.6g},{'nan' if math.isnan(v) else f'{v:.6g}'},{n}" for r, v, n in zip(r_mid, mean_vy, count)]
+    write_table(path, lines)
+    print("\n".join(lines[2:]))
+    print(f"drum_analysis: wrote {path}")
+
+
+def write_table(path, lines):
+    """`lines` to `path` through a temporary file, so that a failure leaves no half-written table."""
+    temporary = f"{path}.tmp-{os.getpid()}"
     try:
         with open(temporary, "w") as handle:
             handle.write("\n".join(lines) + "\n")
@@ -95,13 +110,33 @@ def convection(options):
         if os.path.exists(temporary):
             os.remove(temporary)
         raise PlotError(f"cannot write {path}: {error.strerror}") from error
+
+
+def drift(options):
+    center = tuple(float(v) for v in options.center.split(","))
+    series = snapshot_list(os.path.join(options.drift, "snapshots"))
+    chosen = [s for s in series if s[0] is not None and s[0] >= options.start] if options.start is not None \
+        else series[len(series) // 2:]
+    if len(chosen) < 2:
+        raise PlotError(f"{options.drift}: fewer than two snapshots to compare")
+    edges, mean, error, pairs = axial_drift_profile([read_vtu(path) for _, path in chosen], options.radius, center)
+    lines = [f"# convection of {os.path.basename(os.path.normpath(options.drift))}: mean vertical displacement per "
+             f"snapshot interval (one drive period) of the bulk's grains by radius, {pairs} pairs of snapshots "
+             f"from t = {chosen[0][0]:g}; the last annulus is the wall layer",
+             "# units: r_from m, r_to m, dy_per_period m, standard_error m",
+             "r_from,r_to,dy_per_period,standard_error"]
+    lines += [f"{a:.6g},{b:.6g},{m:.6g},{e:.3g}" for a, b, m, e in zip(edges[:-1], edges[1:], mean, error)]
+    path = os.path.join(options.drift, "convection_drift.csv")
+    write_table(path, lines)
     print("\n".join(lines[2:]))
     print(f"drum_analysis: wrote {path}")
 
 
 def main(argv):
     options = parse(argv[1:])
-    if options.convection is not None:
+    if options.drift is not None:
+        drift(options)
+    elif options.convection is not None:
         convection(options)
     else:
         sweep_table(options)

@@ -356,6 +356,51 @@ def axial_convection_profile(snapshots, R, axis_center=(0.0, 0.0), annuli=8, exc
     return 0.5 * (edges[:-1] + edges[1:]), mean, count
 
 
+def axial_drift_profile(snapshots, R, axis_center=(0.0, 0.0), edges=None, bulk_fraction=0.7):
+    """The convection of a vibrated bed in a cylinder (axis along y through (x, z) = axis_center,
+    radius R), from snapshots one drive period apart (output.snapshot_interval = 1 / f: the same
+    phase each time, so the floor's and the bed's oscillation cancel): each grain's vertical
+    displacement from one snapshot to the next, averaged per annulus of its radius r = sqrt(x^2 + z^2)
+    over the grains in the bed's bulk (the middle `bulk_fraction` of the heights, away from the floor
+    and the free surface), then over the pairs of snapshots. Knight, Jaeger & Nagel (1993): down in a
+    layer at a frictional wall, up in the centre.
+
+    `edges`: the annuli's radii (default: the wall layer, r > R - 1.5 d, and four equal-area annuli
+    inside it). Returns (edges, mean dy per period, its standard error over the pairs, pairs)."""
+    frames = []
+    for snapshot in snapshots:
+        if snapshot.get("id") is None:
+            raise PlotError("axial_drift_profile: the snapshots carry no particle ids")
+        order = np.argsort(snapshot["id"])
+        frames.append((snapshot["id"][order], snapshot["position"][order]))
+    if len(frames) < 2:
+        raise PlotError("axial_drift_profile: needs at least two snapshots")
+    if edges is None:
+        d = 2.0 * float(np.median(snapshots[0]["radius"]))
+        inner = R - 1.5 * d
+        edges = np.append(inner * np.sqrt(np.arange(5) / 4.0), R)
+    edges = np.asarray(edges, dtype=float)
+    rows = []
+    for (ids_a, xa), (ids_b, xb) in zip(frames[:-1], frames[1:]):
+        if ids_a.shape != ids_b.shape or np.any(ids_a != ids_b):
+            raise PlotError("axial_drift_profile: the snapshots hold different particles")
+        dy = xb[:, 1] - xa[:, 1]
+        height = 0.5 * (xa[:, 1] + xb[:, 1])
+        lo, hi = np.percentile(height, [50.0 * (1.0 - bulk_fraction), 50.0 * (1.0 + bulk_fraction)])
+        bulk = (height > lo) & (height < hi)
+        r = np.hypot(xa[:, 0] - axis_center[0], xa[:, 2] - axis_center[1])
+        row = []
+        for a, b in zip(edges[:-1], edges[1:]):
+            m = bulk & (r >= a) & (r < b)
+            row.append(dy[m].mean() if m.any() else math.nan)
+        rows.append(row)
+    rows = np.array(rows)
+    pairs = rows.shape[0]
+    mean = np.nanmean(rows, axis=0)
+    error = np.nanstd(rows, axis=0) / math.sqrt(pairs) if pairs > 1 else np.full(len(mean), math.nan)
+    return edges, mean, error, pairs
+
+
 def analyze_sweep(sweep_dir, **options):
     """drum_regimes.csv and drum_regimes.png of a sweep folder: see drum_sweep.analyze_sweep."""
     from .drum_sweep import analyze_sweep as analyze  # the sweep's files and figure live there

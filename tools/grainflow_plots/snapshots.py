@@ -69,7 +69,8 @@ def snapshot_list(folder):
 
 
 def read_vtu(path):
-    """{'position': [N, 3], 'radius': [N], 'species': [N] or None, 'velocity': [N, 3] or None} of one
+    """{'position': [N, 3], 'radius': [N], 'species': [N] or None, 'velocity': [N, 3] or None,
+    'id': [N] or None} of one
     grainflow VTU file, or of a parallel index (.pvtu, an MPI run's) with its pieces joined."""
     if path.endswith(".pvtu"):
         return read_pvtu(path)
@@ -108,8 +109,9 @@ def read_vtu(path):
             raise PlotError(f"{path}: no 'radius' or 'diameter' array")
         radius = 0.5 * diameter
     species = array(data.get("species"), 1)
+    ids = array(data.get("id"), 1)
     return {"position": position, "radius": radius, "species": None if species is None else species.astype(int),
-            "velocity": array(data.get("velocity"), 3)}
+            "velocity": array(data.get("velocity"), 3), "id": None if ids is None else ids.astype(np.int64)}
 
 
 def read_pvtu(path):
@@ -123,7 +125,7 @@ def read_pvtu(path):
         raise PlotError(f"{path}: no Piece with a Source")
     pieces = [read_vtu(os.path.join(os.path.dirname(path), source)) for source in sources]
     joined = {}
-    for key in ("position", "radius", "species", "velocity"):
+    for key in ("position", "radius", "species", "velocity", "id"):
         values = [piece[key] for piece in pieces]
         joined[key] = None if any(v is None for v in values) else np.concatenate(values)
     return joined
