@@ -413,6 +413,7 @@ class DemEngine {
   // Per wall: how far beyond a particle's radius its candidates reach (m), and its displacement and
   // the time when its list was built.
   std::vector<double> wall_reach_;
+  std::vector<std::uint8_t> wall_moves_;  // 1: its surface may move (its list's reach is 1.5 skin)
   struct WallBuild {
     Vec3 shift;
     double time = 0.0;

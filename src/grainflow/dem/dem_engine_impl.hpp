@@ -38,6 +38,7 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
   // particle may have moved a whole skin since it was built.
   for (const DemWall& wall : s_.walls) {
     const bool moves = wall.motion.moves() || wall.turns || (s_.servo.config.enabled && wall.face >= 0);
+    wall_moves_.push_back(moves);
     wall_reach_.push_back((moves ? 1.5 : 0.5) * s_.skin + s_.cohesion_reach);
   }
   bump_wall_.fill(-1);

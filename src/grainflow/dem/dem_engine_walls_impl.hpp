@@ -38,6 +38,7 @@ template <class Law, bool Rolling>
 void DemEngine<Law, Rolling>::refresh_moved_walls() {
   for (std::size_t w = 0; w < s_.walls.size(); ++w) {
     const DemWall& wall = s_.walls[w];
+    if (!wall_moves_[w]) continue;  // a still surface's list waits for the neighbour list's rebuild
     if (wall.surface_travel(wall_build_[w].shift, wall_build_[w].time, wall.shift, s_.time) <= 0.5 * s_.skin) continue;
     auto kept = contacts_.take_wall_touching(s_.particles.id, static_cast<int>(w));
     ContactStore<State>::sort_kept(kept);

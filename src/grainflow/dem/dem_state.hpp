@@ -55,9 +55,9 @@ struct DemWall : FaceWall {
   // How far its surface may have moved between two displacements and times: bounds the particles
   // a wall may reach that were out of its reach when its contact list was built.
   double surface_travel(const Vec3& shift_then, double then, const Vec3& shift_now, double now) const {
-    double travel = std::visit([&](const auto& s) { return s.surface_shift(shift_now - shift_then); }, initial_shape);
-    if (turns) travel += norm(angular_velocity) * std::fabs(now - then) * reach_turn;
-    return travel;
+    // A turning shape's orientation changed meanwhile: its translation counts whole.
+    if (turns) return norm(shift_now - shift_then) + norm(angular_velocity) * std::fabs(now - then) * reach_turn;
+    return std::visit([&](const auto& s) { return s.surface_shift(shift_now - shift_then); }, initial_shape);
   }
 };
 

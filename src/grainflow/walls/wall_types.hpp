@@ -23,9 +23,4 @@ std::string wall_type_names();
 // The shape a [[geometry]] table describes (its type checked by the loader), at t = 0.
 WallShape make_wall_shape(const GeometryConfig& g);
 
-template <class F>
-decltype(auto) visit_shape(const WallShape& shape, F&& f) {
-  return std::visit(std::forward<F>(f), shape);
-}
-
 }  // namespace grainflow::walls
