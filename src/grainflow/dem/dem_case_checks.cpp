@@ -13,6 +13,7 @@
 #include "grainflow/dem/bump_lattice.hpp"
 #include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
+#include "grainflow/walls/wall_types.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
 
 namespace grainflow::dem {
@@ -51,15 +52,9 @@ void validate_planar(const CaseConfig& c) {
     const GeometryConfig& geometry = c.geometry[g];
     const std::string key = "geometry." + std::to_string(g);
     const std::string why = "in 2D (discs in the x-y plane) ";
-    if (geometry.type == "plane" && geometry.keys.vector("normal").z != 0.0)
-      fail(c, key + ".normal", why + "a plane's normal lies in the plane: its z component must be 0");
-    if (geometry.type == "cylinder") {
-      const Vec3 axis = geometry.keys.vector("axis");
-      if (axis.x != 0.0 || axis.y != 0.0) fail(c, key + ".axis", why + "a cylinder's axis is along z (a circle)");
-    }
-    if (geometry.type == "cone") fail(c, key + ".type", why + "a cone would push discs off their plane");
-    if (geometry.motion.velocity.z != 0.0)
-      fail(c, key + ".motion.velocity", why + "the z component must be 0");
+    if (const auto problem = walls::in_plane_problem(geometry))
+      fail(c, key + "." + problem->key, why + problem->reason);
+    if (geometry.motion.velocity.z != 0.0) fail(c, key + ".motion.velocity", why + "the z component must be 0");
     if (geometry.motion.angular_velocity.x != 0.0 || geometry.motion.angular_velocity.y != 0.0)
       fail(c, key + ".motion.angular_velocity", why + "walls turn about z only");
   }

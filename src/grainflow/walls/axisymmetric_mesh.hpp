@@ -42,7 +42,8 @@ inline SurfaceMesh axisymmetric_mesh(const Vec3& point, const Vec3& axis, double
     for (int ring = 0; ring < 2; ++ring) {
       const int centre = static_cast<int>(m.points.size());
       m.points.push_back(point + (ring ? h1 : h0) * axis);
-      for (int k = 0; k < kSides; ++k) m.triangles.push_back({centre, ring * kSides + k, ring * kSides + (k + 1) % kSides});
+      for (int k = 0; k < kSides; ++k)
+        m.triangles.push_back({centre, ring * kSides + k, ring * kSides + (k + 1) % kSides});
     }
   }
   return m;

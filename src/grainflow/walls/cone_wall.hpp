@@ -17,8 +17,11 @@ struct ConeWall {
   static constexpr std::string_view meaning = "a cone or frustum about any axis (hoppers, funnels), particles inside";
   static void read(TomlReader& table, GeometryKeys& out);
   static ConeWall from_keys(const GeometryKeys& keys);
+  static std::optional<KeyProblem> in_plane_problem(const GeometryKeys&) {
+    return KeyProblem{"type", "a cone would push discs off their plane"};
+  }
 
-  Vec3 point, axis;  // m; unit
+  Vec3 point, axis;                                           // m; unit
   double radius_start = 0.0, radius_end = 0.0, length = 0.0;  // m
   bool inside = true;
 

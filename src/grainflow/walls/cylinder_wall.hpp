@@ -17,6 +17,11 @@ struct CylinderWall {
   static constexpr std::string_view meaning = "a circular cylinder about any axis, particles inside or outside";
   static void read(TomlReader& table, GeometryKeys& out);
   static CylinderWall from_keys(const GeometryKeys& keys);
+  static std::optional<KeyProblem> in_plane_problem(const GeometryKeys& keys) {
+    const Vec3 axis = keys.vector("axis");
+    if (axis.x != 0.0 || axis.y != 0.0) return KeyProblem{"axis", "a cylinder's axis is along z (a circle)"};
+    return std::nullopt;
+  }
 
   Vec3 point, axis;  // m; unit
   double radius = 0.0;

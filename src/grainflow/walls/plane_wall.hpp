@@ -16,14 +16,20 @@ struct PlaneWall {
   static constexpr std::string_view meaning = "a flat wall at any angle, unbounded or a disc or a rectangle";
   static void read(TomlReader& table, GeometryKeys& out);
   static PlaneWall from_keys(const GeometryKeys& keys);
+  // Discs (2D) keep every contact normal in the x-y plane: the key that would not, and why; or none.
+  static std::optional<KeyProblem> in_plane_problem(const GeometryKeys& keys) {
+    if (keys.vector("normal").z != 0.0)
+      return KeyProblem{"normal", "a plane's normal lies in the plane: its z component must be 0"};
+    return std::nullopt;
+  }
 
   enum class Bound { none, disc, rectangle };
   Vec3 point, normal;  // m; unit
   Bound bound = Bound::none;
-  double radius = 0.0;        // m, a disc's
-  Vec3 direction;             // unit, in the plane: a rectangle's width
-  double half_width = 0.0;    // m
-  double half_height = 0.0;   // m
+  double radius = 0.0;       // m, a disc's
+  Vec3 direction;            // unit, in the plane: a rectangle's width
+  double half_width = 0.0;   // m
+  double half_height = 0.0;  // m
 
   int elements() const { return 1; }
   SurfaceContact contact(int /*element*/, const Vec3& x) const {

@@ -4,11 +4,18 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "grainflow/core/vec3.hpp"
 
 namespace grainflow::walls {
+
+// A key of a wall's table that a setting rules out, and why.
+struct KeyProblem {
+  std::string key, reason;
+};
 
 // A centre x against one element of a surface: `gap` is the distance from the nearest surface point
 // to x along `normal` (negative behind the surface), `normal` the unit vector from the surface

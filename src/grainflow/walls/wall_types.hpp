@@ -1,5 +1,5 @@
 // The wall types a [[geometry]] table may name (geometry.type). Adding a type: its own file (a struct
-// with name, meaning, read, from_keys, elements, contact, moved, spins_in_place, surface_shift and
+// with name, meaning, read, from_keys, in_plane_problem, elements, contact, moved, spins_in_place, surface_shift and
 // mesh, as plane_wall.hpp) and one entry in WallShape; the case loader, writer, the engine's wall loop
 // (one instantiation per type: no virtual call per contact) and the snapshots follow.
 #pragma once
@@ -14,6 +14,7 @@
 
 namespace grainflow::walls {
 
+// The registered types, in the order `type` names list them.
 using WallShape = std::variant<PlaneWall, CylinderWall, ConeWall>;
 
 // The case loader's view of every registered type.
@@ -22,5 +23,7 @@ GeometrySchemas geometry_schemas();
 std::string wall_type_names();
 // The shape a [[geometry]] table describes (its type checked by the loader), at t = 0.
 WallShape make_wall_shape(const GeometryConfig& g);
+// The key of `g` that would push discs (2D) off their plane, and why; or none.
+std::optional<KeyProblem> in_plane_problem(const GeometryConfig& g);
 
 }  // namespace grainflow::walls
