@@ -98,46 +98,31 @@ bool equals_ignoring_case(std::string_view a, std::string_view b) {
          });
 }
 
-// ASCII STL as a stream of words, each with its line, so that any spacing and line breaking reads.
+// ASCII STL read word by word, each word's line counted, so that any spacing and line breaking reads.
 class AsciiParser {
  public:
   AsciiParser(const std::string& data, const std::string& path, const std::string& key, Welder& welder)
-      : path_(path), key_(key), welder_(welder) {
-    std::size_t line = 1;
-    for (std::size_t i = 0; i < data.size();) {
-      if (std::isspace(static_cast<unsigned char>(data[i]))) {
-        if (data[i++] == '\n') ++line;
-        continue;
-      }
-      const std::size_t start = i;
-      while (i < data.size() && !std::isspace(static_cast<unsigned char>(data[i]))) ++i;
-      words_.push_back({std::string_view(data).substr(start, i - start), line});
-    }
-  }
+      : data_(data), path_(path), key_(key), welder_(welder) {}
 
   // One or more solids, each of facets.
   void parse() {
-    while (at_ < words_.size()) {
+    while (!peek().empty()) {
       expect("solid", "expected 'solid'");
       skip_rest_of_line();  // the solid's name
-      while (at_ < words_.size() && !equals_ignoring_case(words_[at_].text, "endsolid")) facet();
+      for (std::string_view word = peek(); !word.empty() && !equals_ignoring_case(word, "endsolid"); word = peek())
+        facet();
       expect("endsolid", "expected 'endsolid'");
       skip_rest_of_line();
     }
   }
 
  private:
-  struct Word {
-    std::string_view text;
-    std::size_t line;
-  };
-
   void facet() {
     expect("facet", "expected 'facet normal nx ny nz' or 'endsolid'");
     // The normal written in the file is ignored: the corners' winding defines the front (exporters
     // often write zero or stale normals).
-    if (at_ < words_.size() && equals_ignoring_case(words_[at_].text, "normal")) {
-      ++at_;
+    if (const std::string_view word = peek(); equals_ignoring_case(word, "normal")) {
+      take(word);
       point("expected 'facet normal nx ny nz'");
     }
     expect("outer", "expected 'outer loop'");
@@ -152,40 +137,49 @@ class AsciiParser {
     welder_.add(corners);
   }
 
-  [[noreturn]] void fail(const char* what) const {
-    const std::size_t line = at_ < words_.size() ? words_[at_].line : (words_.empty() ? 1 : words_.back().line);
-    throw InputError(path_, key_, "line " + std::to_string(line) + ": " + what);
+  // The next word (empty at the end of the file), left unread.
+  std::string_view peek() {
+    for (; at_ < data_.size() && std::isspace(static_cast<unsigned char>(data_[at_])); ++at_)
+      if (data_[at_] == '\n') ++line_;
+    std::size_t end = at_;
+    while (end < data_.size() && !std::isspace(static_cast<unsigned char>(data_[end]))) ++end;
+    return std::string_view(data_).substr(at_, end - at_);
+  }
+
+  void take(std::string_view word) { at_ += word.size(); }
+
+  // The line of the word that is not what was expected (the last line at the end of the file).
+  [[noreturn]] void fail(const char* what) {
+    if (peek().empty()) line_ = 1 + std::count(data_.begin(), data_.begin() + data_.find_last_not_of(" \t\r\n\f\v"), '\n');
+    throw InputError(path_, key_, "line " + std::to_string(line_) + ": " + what);
   }
 
   void expect(std::string_view word, const char* what) {
-    if (at_ >= words_.size() || !equals_ignoring_case(words_[at_].text, word)) fail(what);
-    ++at_;
+    const std::string_view next = peek();
+    if (!equals_ignoring_case(next, word)) fail(what);
+    take(next);
   }
 
   Vec3 point(const char* what) {
     Vec3 p;
     for (int axis = 0; axis < 3; ++axis) {
-      if (at_ >= words_.size()) fail(what);
-      std::string_view text = words_[at_].text;
-      if (text.starts_with('+')) text.remove_prefix(1);  // from_chars takes no plus sign
+      const std::string_view word = peek();
+      const std::string_view text = word.starts_with('+') ? word.substr(1) : word;  // from_chars takes no '+'
       // from_chars: independent of the locale, and reads "nan" and "inf" (refused later by triangle).
       const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), p[axis]);
       if (error != std::errc() || end != text.data() + text.size()) fail(what);
-      ++at_;
+      take(word);
     }
     return p;
   }
 
-  void skip_rest_of_line() {
-    const std::size_t line = words_[at_ - 1].line;
-    while (at_ < words_.size() && words_[at_].line == line) ++at_;
-  }
+  void skip_rest_of_line() { at_ = std::min(data_.find('\n', at_), data_.size()); }
 
+  const std::string& data_;
   const std::string& path_;
   const std::string& key_;
   Welder& welder_;
-  std::vector<Word> words_;
-  std::size_t at_ = 0;
+  std::size_t at_ = 0, line_ = 1;
 };
 
 // Binary when the size matches the count at offset 80, even if the header starts with "solid" (as
