@@ -150,7 +150,8 @@ class AsciiParser {
 
   // The line of the word that is not what was expected (the last line at the end of the file).
   [[noreturn]] void fail(const char* what) {
-    if (peek().empty()) line_ = 1 + std::count(data_.begin(), data_.begin() + data_.find_last_not_of(" \t\r\n\f\v"), '\n');
+    if (peek().empty())
+      line_ = 1 + std::count(data_.begin(), data_.begin() + data_.find_last_not_of(" \t\r\n\f\v"), '\n');
     throw InputError(path_, key_, "line " + std::to_string(line_) + ": " + what);
   }
 
@@ -207,17 +208,15 @@ TriangleMesh read_stl(const std::string& path, const std::string& key, MeshRepor
   Welder welder(path, key);
   if (binary) {
     if (data.size() < kHeaderBytes)
-      throw InputError(path, key,
-                       "is truncated: a binary STL file has at least 84 bytes, this one " +
-                           std::to_string(data.size()));
+      throw InputError(
+          path, key, "is truncated: a binary STL file has at least 84 bytes, this one " + std::to_string(data.size()));
     std::uint32_t count;
     std::memcpy(&count, data.data() + 80, 4);
     const std::size_t expected = kHeaderBytes + kTriangleBytes * std::size_t{count};
     if (data.size() != expected)
       throw InputError(path, key,
-                       "is truncated (or not STL): a binary STL file of " + std::to_string(count) +
-                           " triangles has " + std::to_string(expected) + " bytes, this one " +
-                           std::to_string(data.size()));
+                       "is truncated (or not STL): a binary STL file of " + std::to_string(count) + " triangles has " +
+                           std::to_string(expected) + " bytes, this one " + std::to_string(data.size()));
     read_binary(data, welder);
   } else {
     AsciiParser(data, path, key, welder).parse();
@@ -312,8 +311,9 @@ MeshReport check_mesh(TriangleMesh& mesh, const std::string& path, const std::st
           state[u] = wanted;
           piece.push_back(u);
         } else if (state[u] != wanted) {
-          fail(triangle_name(u) + " cannot be given a front that agrees with all its neighbours: its piece of "
-                                  "the mesh is one-sided (as a Moebius strip)");
+          fail(triangle_name(u) +
+               " cannot be given a front that agrees with all its neighbours: its piece of "
+               "the mesh is one-sided (as a Moebius strip)");
         }
       }
     }
