@@ -167,6 +167,7 @@ void write_geometry(Out& o, const CaseConfig& c) {
     for (const GeometryKey& k : g.keys.entries()) {
       if (k.kind == GeometryKey::Kind::number) o.key(k.key, k.value.x);
       else if (k.kind == GeometryKey::Kind::vector) o.key(k.key, vec(k.value));
+      else if (k.kind == GeometryKey::Kind::text) o.text_key(k.key, k.text);
       else o.key(k.key, k.value.x != 0.0);
     }
     for (const auto& [key, value] : g.material.contact.entries()) o.key(key, value);

@@ -18,10 +18,11 @@ class TomlReader;
 
 struct GeometryKey {
   bool operator==(const GeometryKey&) const = default;
-  enum class Kind { number, vector, boolean };
+  enum class Kind { number, vector, boolean, text };
   std::string key;
   Kind kind = Kind::number;
-  Vec3 value;  // a number in x; a boolean as 0 or 1 in x
+  Vec3 value;        // a number in x; a boolean as 0 or 1 in x
+  std::string text;  // a text's (a file's path)
 };
 
 class GeometryKeys {
@@ -32,9 +33,15 @@ class GeometryKeys {
   double number(std::string_view key) const { return at(key).value.x; }
   Vec3 vector(std::string_view key) const { return at(key).value; }
   bool boolean(std::string_view key) const { return at(key).value.x != 0.0; }
+  const std::string& text(std::string_view key) const { return at(key).text; }
   void set_number(std::string_view key, double v) { set(key, GeometryKey::Kind::number, {v, 0.0, 0.0}); }
   void set_vector(std::string_view key, const Vec3& v) { set(key, GeometryKey::Kind::vector, v); }
   void set_boolean(std::string_view key, bool v) { set(key, GeometryKey::Kind::boolean, {v ? 1.0 : 0.0, 0.0, 0.0}); }
+  void set_text(std::string_view key, std::string v) {
+    set(key, GeometryKey::Kind::text, {});
+    for (auto& e : entries_)
+      if (e.key == key) e.text = std::move(v);
+  }
   const std::vector<GeometryKey>& entries() const { return entries_; }
 
  private:
@@ -55,7 +62,7 @@ class GeometryKeys {
         e.value = v;
         return;
       }
-    entries_.push_back({std::string(key), kind, v});
+    entries_.push_back({std::string(key), kind, v, {}});
   }
   std::vector<GeometryKey> entries_;
 };

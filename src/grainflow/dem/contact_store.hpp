@@ -8,24 +8,33 @@
 #include <vector>
 
 #include "grainflow/dem/neighbor_list.hpp"
+#include "grainflow/walls/surface_contact.hpp"
 
 namespace grainflow::dem {
 
 // One wall's contact candidates: the particles within reach of each element of its surface when the
 // list was built (elements one after another, particles in index order within each), so that a
 // step's cost follows the particles near the wall, not the wall count times N.
+// A mesh's list is different: its "elements" are contact slots (a sphere may press on a mesh at
+// several places, MeshSurface::kMaxContacts), each slot's block holding the same particles; a slot
+// keeps its history while its contact slides from triangle to triangle (matched by its normal).
 template <class State>
 struct WallContactList {
   std::vector<std::uint32_t> offsets{0};  // element e's entries are [offsets[e], offsets[e + 1])
   std::vector<std::uint32_t> particle;
   std::vector<State> state;
   std::vector<std::uint8_t> touching;  // 1 while the particle overlaps the element
+  // A mesh's only: per particle of a slot's block, the triangles it may reach before the next
+  // build ([candidate_offsets[k], candidate_offsets[k + 1]) of candidates); per entry its contact
+  // at the last force evaluation.
+  std::vector<std::uint32_t> candidate_offsets, candidates;
+  std::vector<walls::SurfaceContact> contact;
 
   std::size_t size() const { return particle.size(); }
   std::size_t elements() const { return offsets.size() - 1; }
   template <class Archive>
   void serialize(Archive& ar) {
-    ar(offsets, particle, state, touching);
+    ar(offsets, particle, state, touching, candidate_offsets, candidates, contact);
   }
 };
 
@@ -45,6 +54,7 @@ struct ContactStore {
   struct KeptWall {
     std::uint32_t id, wall, element;
     State state;
+    walls::SurfaceContact contact;  // a mesh's slot's last contact (matches it next step)
     auto key() const { return std::array<std::uint32_t, 3>{wall, id, element}; }
   };
   // The touching contacts of wall `wall` (every wall when -1), by id, sorted by key.
@@ -57,7 +67,7 @@ struct ContactStore {
         for (std::uint32_t k = list.offsets[e]; k < list.offsets[e + 1]; ++k)
           if (list.touching[k])
             kept.push_back({ids[list.particle[k]], static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(e),
-                            list.state[k]});
+                            list.state[k], list.contact.empty() ? walls::SurfaceContact{} : list.contact[k]});
     }
     return kept;
   }
@@ -77,6 +87,7 @@ struct ContactStore {
         if (it == kept.begin() || (it - 1)->key() != key) continue;
         list.state[k] = (it - 1)->state;
         list.touching[k] = 1;
+        if (!list.contact.empty()) list.contact[k] = (it - 1)->contact;
       }
   }
   static void sort_kept(std::vector<KeptWall>& kept) {

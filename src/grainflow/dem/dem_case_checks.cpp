@@ -108,6 +108,32 @@ void validate_periodic_lengths(const CaseConfig& c, const dem::DerivedQuantities
   }
 }
 
+// A mesh more than this many particle diameters across would need ~10^10 grains to fill: its file
+// is in other units than the case (millimetres read as metres); one smaller than a grain, the reverse.
+constexpr double kMaxMeshDiameters = 1e5;
+
+void validate_mesh_sizes(const CaseConfig& c, const dem::DerivedQuantities& d) {
+  for (std::size_t g = 0; g < c.geometry.size(); ++g) {
+    const walls::WallShape shape = walls::make_wall_shape(c.geometry[g]);
+    const auto* mesh = std::get_if<walls::MeshWall>(&shape);
+    if (!mesh) continue;
+    const Vec3 size = mesh->surface->hi() - mesh->surface->lo();
+    const double extent = std::max({size.x, size.y, size.z});
+    const std::string file = c.geometry[g].keys.text("file");
+    const std::string key = "geometry." + std::to_string(g) + ".scale";
+    if (extent > kMaxMeshDiameters * d.max_diameter)
+      fail(c, key,
+           "the mesh of '" + file + "' spans " + fmt_number(extent) + " m, " + fmt_number(extent / d.max_diameter) +
+               " particle diameters: its file is in other units than the case? (scale turns file units into the "
+               "case's)");
+    if (extent < d.max_diameter)
+      fail(c, key,
+           "the mesh of '" + file + "' spans " + fmt_number(extent) + " m, less than one particle diameter (" +
+               fmt_number(d.max_diameter) + " m): its file is in other units than the case? (scale turns file "
+               "units into the case's)");
+  }
+}
+
 // Bumps that neither overlap nor let the smallest free species through.
 void validate_bumpy_walls(const CaseConfig& c) {
   for (int f = 0; f < 6; ++f) {
@@ -301,6 +327,7 @@ DerivedQuantities validate_dem_case(const CaseConfig& c) {
              " steps; use a time step <= " + std::to_string(suggested) + " s (at least 5 steps per contact)");
   }
   validate_periodic_lengths(c, d);
+  validate_mesh_sizes(c, d);
   validate_bumpy_walls(c);
   validate_placement(c, d);
   if (c.drive.enabled && c.drive.face >= 0 && c.domain.faces[c.drive.face] == FaceKind::periodic)

@@ -211,7 +211,7 @@ class DemEngine {
               for (std::uint32_t k = list.offsets[e]; k < list.offsets[e + 1]; ++k) {
                 const std::uint32_t i = list.particle[k];
                 if (!list.touching[k] || p.motion[i] != Motion::free || p.ghost[i]) continue;
-                const walls::SurfaceContact sc = shape.contact(static_cast<int>(e), p.position[i]);
+                const walls::SurfaceContact sc = listed_contact(shape, list, e, k, p.position[i]);
                 if (!wall_in_contact(sc.gap, p.radius[i], true, wall_params_[w])) continue;
                 Vec3 point = p.position[i] - sc.gap * sc.normal;
                 if (wall.face >= 0) point = face_point(wall, p.position[i]);  // exactly on the plane
@@ -369,8 +369,24 @@ class DemEngine {
   // a turning part (ω × r).
   template <bool Spins, class Shape>
   ForceLoopSums wall_forces_on(std::size_t w, const Shape& shape, double dt);
+  // A mesh's: each particle's contacts with the surface, each in the slot its history is kept in.
+  template <bool Spins>
+  ForceLoopSums mesh_forces_on(std::size_t w, const walls::MeshWall& mesh, double dt);
+  // The force of one wall contact on particle i (its surface contact `sc`, its memory `state`).
+  template <bool Spins>
+  [[gnu::always_inline]] inline void wall_contact_force(const DemWall& wall, std::size_t w, const Params& params,
+                                                        std::uint32_t i, const walls::SurfaceContact& sc,
+                                                        State& state, double dt, ForceLoopSums& local);
   // Wall w's contact candidates anew: the free particles within its reach of each element now.
   void build_wall_list(std::size_t w);
+  void build_mesh_list(std::size_t w, const walls::MeshWall& mesh);
+  // Entry k (of element e) of a wall's list: its contact now, a mesh's as its last evaluation left it.
+  template <class Shape>
+  static walls::SurfaceContact listed_contact(const Shape& shape, const WallContactList<State>& list, std::size_t e,
+                                              std::uint32_t k, const Vec3& x) {
+    if constexpr (std::is_same_v<Shape, walls::MeshWall>) return list.contact[k];
+    else return shape.contact(static_cast<int>(e), x);
+  }
   // Between neighbour-list rebuilds: the lists of the walls whose surface moved more than half a
   // skin since theirs were built, anew, their touching contacts kept.
   void refresh_moved_walls();

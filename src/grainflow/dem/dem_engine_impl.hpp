@@ -247,7 +247,7 @@ double DemEngine<Law, Rolling>::elastic_energy() const {
             for (std::uint32_t k = list.offsets[el]; k < list.offsets[el + 1]; ++k) {
               const std::uint32_t i = list.particle[k];
               if (!list.touching[k] || !p.counted(i)) continue;
-              const double overlap = p.radius[i] - shape.contact(static_cast<int>(el), p.position[i]).gap;
+              const double overlap = p.radius[i] - listed_contact(shape, list, el, k, p.position[i]).gap;
               e += Law::elastic_energy(wall_params_[w], law_state(list.state[k]), energy_overlap(overlap),
                                        p.radius[i]);
               if constexpr (Rolling)

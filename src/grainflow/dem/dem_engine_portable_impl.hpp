@@ -32,7 +32,7 @@ void DemEngine<Law, Rolling>::portable_share(PortableParticles& particles, Porta
       }
   }
   for (const auto& kept : contacts_.take_wall_touching(p.id))  // the lists hold owned particles only
-    contacts.walls.push_back({kept.id, kept.wall, kept.element, kept.state});
+    contacts.walls.push_back(kept);
   contacts.stats = stats_;
   contacts.rebuilds_since_sort = rebuilds_since_sort_;
 }
@@ -46,8 +46,7 @@ void DemEngine<Law, Rolling>::restore_portable(const PortableParticles& particle
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.id[i] < index.size()) index[p.id[i]] = static_cast<std::int64_t>(i);
   // The lists the constructor built from the restored particles take their states.
-  std::vector<typename ContactStore<State>::KeptWall> kept;
-  for (const auto& c : contacts.walls) kept.push_back({c.id, c.wall, c.element, c.state});
+  std::vector<typename ContactStore<State>::KeptWall> kept(contacts.walls);
   ContactStore<State>::sort_kept(kept);
   for (std::size_t w = 0; w < contacts_.walls.size(); ++w) contacts_.restore_wall(w, kept, p.id);
   for (const auto& r : particles.particles) {

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
+#include <type_traits>
 #include <variant>
 
 #include "grainflow/dem/dem_engine.hpp"
@@ -15,23 +17,60 @@ void DemEngine<Law, Rolling>::build_wall_list(std::size_t w) {
   const ParticleStore& p = s_.particles;
   const DemWall& wall = s_.walls[w];
   auto& list = contacts_.walls[w];
-  list.offsets.assign(1, 0);
-  list.particle.clear();
   const double reach = wall_reach_[w];
   std::visit(
       [&](const auto& shape) {
-        for (int e = 0; e < shape.elements(); ++e) {
-          for (std::size_t i = 0; i < p.size(); ++i)
-            if (p.motion[i] == Motion::free && !p.ghost[i] &&
-                shape.contact(e, p.position[i]).gap < p.target_radius[i] + reach)
-              list.particle.push_back(static_cast<std::uint32_t>(i));
-          list.offsets.push_back(static_cast<std::uint32_t>(list.particle.size()));
+        if constexpr (std::is_same_v<std::decay_t<decltype(shape)>, walls::MeshWall>) {
+          build_mesh_list(w, shape);
+        } else {
+          list.offsets.assign(1, 0);
+          list.particle.clear();
+          for (int e = 0; e < shape.elements(); ++e) {
+            for (std::size_t i = 0; i < p.size(); ++i)
+              if (p.motion[i] == Motion::free && !p.ghost[i] &&
+                  shape.contact(e, p.position[i]).gap < p.target_radius[i] + reach)
+                list.particle.push_back(static_cast<std::uint32_t>(i));
+            list.offsets.push_back(static_cast<std::uint32_t>(list.particle.size()));
+          }
         }
       },
       wall.shape);
   list.state.assign(list.size(), State{});
   list.touching.assign(list.size(), 0);
   wall_build_[w] = {wall.shift, s_.time};
+}
+
+template <class Law, bool Rolling>
+void DemEngine<Law, Rolling>::build_mesh_list(std::size_t w, const walls::MeshWall& mesh) {
+  const ParticleStore& p = s_.particles;
+  auto& list = contacts_.walls[w];
+  const double reach = wall_reach_[w];
+  std::vector<std::uint32_t> near;
+  list.candidate_offsets.assign(1, 0);
+  list.candidates.clear();
+  // The tree is asked in the mesh's own frame; a particle beyond its box and the reach is skipped at once.
+  const Vec3 lo = mesh.surface->lo(), hi = mesh.surface->hi();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.motion[i] != Motion::free || p.ghost[i]) continue;
+    const Vec3 x = mesh.to_mesh(p.position[i]);
+    const double r = p.target_radius[i] + reach;
+    if (x.x < lo.x - r || x.y < lo.y - r || x.z < lo.z - r || x.x > hi.x + r || x.y > hi.y + r || x.z > hi.z + r)
+      continue;
+    const std::size_t before = list.candidates.size();
+    mesh.surface->near(x, r, list.candidates);
+    if (list.candidates.size() == before) continue;
+    near.push_back(static_cast<std::uint32_t>(i));
+    list.candidate_offsets.push_back(static_cast<std::uint32_t>(list.candidates.size()));
+  }
+  const auto n = static_cast<std::uint32_t>(near.size());
+  list.offsets.resize(walls::MeshSurface::kMaxContacts + 1);
+  list.particle.clear();
+  for (int slot = 0; slot < walls::MeshSurface::kMaxContacts; ++slot) {
+    list.offsets[slot] = slot * n;
+    list.particle.insert(list.particle.end(), near.begin(), near.end());
+  }
+  list.offsets.back() = walls::MeshSurface::kMaxContacts * n;
+  list.contact.assign(list.particle.size(), {});
 }
 
 template <class Law, bool Rolling>
@@ -71,13 +110,43 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
 }
 
 template <class Law, bool Rolling>
+template <bool Spins>
+inline void DemEngine<Law, Rolling>::wall_contact_force(const DemWall& wall, std::size_t w, const Params& params,
+                                                        std::uint32_t i, const walls::SurfaceContact& sc,
+                                                        State& state, double dt, ForceLoopSums& local) {
+  ParticleStore& p = s_.particles;
+  const double ri = p.radius[i];
+  const double growth_rate = s_.expansion_rate;  // read before the stores below, which might alias it
+  const Vec3 point = p.position[i] - sc.gap * sc.normal;
+  const Vec3 surface = Spins ? wall.surface_velocity(point) : wall.velocity;
+  const ContactKinematics c = wall_kinematics(i, surface, sc.normal, sc.gap);
+  const ContactForce f = Law::force(params, law_state(state), c, dt);
+  const Vec3 total = f.normal * sc.normal + f.tangential;
+  p.force[i] += total;
+  p.torque[i] -= ri * cross(sc.normal, f.tangential);
+  Vec3 couple;
+  if constexpr (Rolling) {
+    RollingKinematics k_roll = rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal);
+    if constexpr (Spins) k_roll.relative_spin -= wall.angular_velocity;
+    couple = RollingResistance::torque(rolling_.walls[w], state.rolling, k_roll, dt);
+    p.torque[i] += couple;
+  }
+  local.boundary_power += dot(total, surface);
+  local.force += total;
+  local.torque -= cross(point - wall.origin, total) + couple;  // the reaction, on the wall
+  if (growth_rate > 0.0 && ri < p.target_radius[i]) local.growth_power += f.normal * growth_rate;
+  local.max_ratio = std::max(local.max_ratio, c.overlap / (2.0 * ri));
+  ++local.contacts;
+}
+
+template <class Law, bool Rolling>
 template <bool Spins, class Shape>
 ForceLoopSums DemEngine<Law, Rolling>::wall_forces_on(std::size_t w, const Shape& shape, double dt) {
-  ParticleStore& p = s_.particles;
+  if constexpr (std::is_same_v<Shape, walls::MeshWall>) return mesh_forces_on<Spins>(w, shape, dt);
+  const ParticleStore& p = s_.particles;
   const DemWall& wall = s_.walls[w];
   const Params& params = wall_params_[w];
   auto& list = contacts_.walls[w];
-  const double growth_rate = s_.expansion_rate;
   ForceLoopSums wall_sums;
   // Element by element: a particle appears once in an element's list, so the threads' slices of it
   // never write to the same particle.
@@ -90,9 +159,8 @@ ForceLoopSums DemEngine<Law, Rolling>::wall_forces_on(std::size_t w, const Shape
           ForceLoopSums local;  // in registers, stored once at the slice's end
           for (std::size_t k = first + begin; k < first + end; ++k) {
             const std::uint32_t i = list.particle[k];
-            const double ri = p.radius[i];
             const walls::SurfaceContact sc = shape.contact(element, p.position[i]);
-            if (!wall_in_contact(sc.gap, ri, list.touching[k], params)) {
+            if (!wall_in_contact(sc.gap, p.radius[i], list.touching[k], params)) {
               list.touching[k] = 0;
               continue;
             }
@@ -101,31 +169,75 @@ ForceLoopSums DemEngine<Law, Rolling>::wall_forces_on(std::size_t w, const Shape
               list.state[k] = State{};
               ++local.begun;
             }
-            const Vec3 point = p.position[i] - sc.gap * sc.normal;
-            const Vec3 surface = Spins ? wall.surface_velocity(point) : wall.velocity;
-            const ContactKinematics c = wall_kinematics(i, surface, sc.normal, sc.gap);
-            const ContactForce f = Law::force(params, law_state(list.state[k]), c, dt);
-            const Vec3 total = f.normal * sc.normal + f.tangential;
-            p.force[i] += total;
-            p.torque[i] -= ri * cross(sc.normal, f.tangential);
-            Vec3 couple;
-            if constexpr (Rolling) {
-              RollingKinematics k_roll = rolling_kinematics(rolling_.walls[w], i, kWall, c, f.normal);
-              if constexpr (Spins) k_roll.relative_spin -= wall.angular_velocity;
-              couple = RollingResistance::torque(rolling_.walls[w], list.state[k].rolling, k_roll, dt);
-              p.torque[i] += couple;
-            }
-            local.boundary_power += dot(total, surface);
-            local.force += total;
-            local.torque -= cross(point - wall.origin, total) + couple;  // the reaction, on the wall
-            if (growth_rate > 0.0 && ri < p.target_radius[i]) local.growth_power += f.normal * growth_rate;
-            local.max_ratio = std::max(local.max_ratio, c.overlap / (2.0 * ri));
-            ++local.contacts;
+            wall_contact_force<Spins>(wall, w, params, i, sc, list.state[k], dt, local);
           }
           sum = local;
         });
   }
   return wall_sums;
+}
+
+template <class Law, bool Rolling>
+template <bool Spins>
+ForceLoopSums DemEngine<Law, Rolling>::mesh_forces_on(std::size_t w, const walls::MeshWall& mesh, double dt) {
+  constexpr int kSlots = walls::MeshSurface::kMaxContacts;
+  const ParticleStore& p = s_.particles;
+  const DemWall& wall = s_.walls[w];
+  const Params& params = wall_params_[w];
+  auto& list = contacts_.walls[w];
+  const std::size_t n = list.elements() == 0 ? 0 : list.offsets[1];
+  // Particle by particle (its slots together): each appears once in a slot's block.
+  return reduce_slices(
+      threads_, n, ForceLoopSums{}, [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
+        ForceLoopSums local;
+        for (std::size_t k = begin; k < end; ++k) {
+          const std::uint32_t i = list.particle[k];
+          std::array<walls::SurfaceContact, kSlots> found;
+          const std::uint32_t from = list.candidate_offsets[k];
+          const int count = mesh.contacts(p.position[i], p.radius[i] + s_.cohesion_reach, list.candidates.data() + from,
+                                          list.candidate_offsets[k + 1] - from, found.data());
+          // Each contact continues the touching slot whose last normal it follows most closely (a
+          // step turns a normal by far less than 60 degrees), or starts in a slot no contact continues.
+          std::array<int, kSlots> slot;
+          unsigned claimed = 0;
+          for (int c = 0; c < count; ++c) {
+            slot[c] = -1;
+            double best = 0.5;
+            for (int s = 0; s < kSlots; ++s) {
+              const std::size_t q = list.offsets[s] + k;
+              if (!list.touching[q] || (claimed >> s & 1u)) continue;
+              const double along = dot(found[c].normal, list.contact[q].normal);
+              if (along > best) best = along, slot[c] = s;
+            }
+            if (slot[c] >= 0) claimed |= 1u << slot[c];
+          }
+          for (int c = 0; c < count; ++c) {
+            if (slot[c] >= 0) continue;
+            int s = 0;
+            while (claimed >> s & 1u) ++s;
+            claimed |= 1u << s;
+            slot[c] = s;
+            list.touching[list.offsets[s] + k] = 0;  // a new contact: whatever the slot held has ended
+          }
+          for (int s = 0; s < kSlots; ++s)
+            if (!(claimed >> s & 1u)) list.touching[list.offsets[s] + k] = 0;
+          for (int c = 0; c < count; ++c) {
+            const std::size_t q = list.offsets[slot[c]] + k;
+            if (!wall_in_contact(found[c].gap, p.radius[i], list.touching[q], params)) {
+              list.touching[q] = 0;
+              continue;
+            }
+            if (!list.touching[q]) {
+              list.touching[q] = 1;
+              list.state[q] = State{};
+              ++local.begun;
+            }
+            list.contact[q] = found[c];
+            wall_contact_force<Spins>(wall, w, params, i, found[c], list.state[q], dt, local);
+          }
+        }
+        sum = local;
+      });
 }
 
 }  // namespace grainflow::dem

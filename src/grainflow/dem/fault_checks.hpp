@@ -100,16 +100,8 @@ struct Escape {
   double beyond = 0.0;  // m, how far its centre lies behind the plane
 };
 
-// The smallest gap between x and any element of the wall's surface (negative behind it).
-inline double wall_gap(const DemWall& wall, const Vec3& x) {
-  return std::visit(
-      [&](const auto& shape) {
-        double gap = shape.contact(0, x).gap;
-        for (int e = 1; e < shape.elements(); ++e) gap = std::min(gap, shape.contact(e, x).gap);
-        return gap;
-      },
-      wall.shape);
-}
+// The smallest gap between x and the wall's surface (negative behind it), looking `reach` far.
+inline double wall_gap(const DemWall& wall, const Vec3& x, double reach) { return walls::nearest_gap(wall.shape, x, reach); }
 
 inline std::optional<Escape> first_escape(const DemState& s) {
   const ParticleStore& p = s.particles;
@@ -117,7 +109,7 @@ inline std::optional<Escape> first_escape(const DemState& s) {
     const DemWall& wall = s.walls[w];
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.motion[i] != Motion::free) continue;
-      const double gap = wall_gap(wall, p.position[i]);
+      const double gap = wall_gap(wall, p.position[i], p.radius[i]);
       if (gap < -2.0 * p.radius[i]) return Escape{i, static_cast<int>(w), -gap};
     }
   }
@@ -173,7 +165,7 @@ inline LargestOverlap largest_overlap(const DemState& s, const NeighborPairs& pa
   for (std::size_t w = 0; w < s.walls.size(); ++w)
     for (std::size_t i = 0; i < p.size(); ++i) {
       if (p.motion[i] != Motion::free) continue;
-      const double ratio = (p.radius[i] - wall_gap(s.walls[w], p.position[i])) / (2.0 * p.radius[i]);
+      const double ratio = (p.radius[i] - wall_gap(s.walls[w], p.position[i], p.radius[i])) / (2.0 * p.radius[i]);
       if (ratio > best.ratio) best = {ratio, i, i, static_cast<int>(w)};
     }
   return best;

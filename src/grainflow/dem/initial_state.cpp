@@ -84,17 +84,8 @@ void add_walls(const CaseConfig& c, DemState& s) {
 // The first wall of [[geometry]] whose surface a sphere at x of radius r overlaps by more than
 // `allowed` of its radius, or null.
 const DemWall* geometry_in_the_way(const DemState& s, const Vec3& x, double r, double allowed) {
-  for (const DemWall& wall : s.walls) {
-    if (wall.face >= 0) continue;
-    const bool clear = std::visit(
-        [&](const auto& shape) {
-          for (int e = 0; e < shape.elements(); ++e)
-            if (shape.contact(e, x).gap < (1.0 - allowed) * r) return false;
-          return true;
-        },
-        wall.shape);
-    if (!clear) return &wall;
-  }
+  for (const DemWall& wall : s.walls)
+    if (wall.face < 0 && walls::nearest_gap(wall.shape, x, r) < (1.0 - allowed) * r) return &wall;
   return nullptr;
 }
 

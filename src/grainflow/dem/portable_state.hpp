@@ -36,10 +36,7 @@ struct PortableParticles {
 template <class State, class Statistics>
 struct PortableContacts {
   using Pair = typename ContactStore<State>::KeptPair;  // by ids, the list's particle first
-  struct WallContact {
-    std::uint32_t id, wall, element;
-    State state;
-  };
+  using WallContact = typename ContactStore<State>::KeptWall;  // by the particle's id
   std::vector<Pair> pairs;         // touching pairs
   std::vector<WallContact> walls;  // touching particle-wall contacts
   Statistics stats{};              // contacts begun summed over ranks

@@ -98,6 +98,7 @@ void print_geometry(const CaseConfig& c, std::ostream& out) {
       keys += (keys.empty() ? "" : ", ") + k.key + " = ";
       if (k.kind == GeometryKey::Kind::vector) keys += fmt::format("[{:.6g}, {:.6g}, {:.6g}]", k.value.x, k.value.y, k.value.z);
       else if (k.kind == GeometryKey::Kind::boolean) keys += k.value.x != 0.0 ? "true" : "false";
+      else if (k.kind == GeometryKey::Kind::text) keys += k.text;
       else keys += fmt::format("{:.6g}", k.value.x);
     }
     out << fmt::format("  geometry {:<19} {}: {}\n", g.name, g.type, keys);

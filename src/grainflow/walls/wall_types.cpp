@@ -1,7 +1,9 @@
 #include "grainflow/walls/wall_types.hpp"
 
 #include <array>
+#include <algorithm>
 #include <stdexcept>
+#include <type_traits>
 
 namespace grainflow::walls {
 namespace {
@@ -47,5 +49,19 @@ std::string wall_type_names() {
 WallShape make_wall_shape(const GeometryConfig& g) { return shape_named(g.type, g.keys); }
 
 std::optional<KeyProblem> in_plane_problem(const GeometryConfig& g) { return in_plane_problem_of(g.type, g.keys); }
+
+double nearest_gap(const WallShape& shape, const Vec3& x, double reach) {
+  return std::visit(
+      [&](const auto& s) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(s)>, MeshWall>) {
+          return s.nearest_distance(x, reach);  // through its tree: a mesh may have 10^5 elements
+        } else {
+          double gap = s.contact(0, x).gap;
+          for (int e = 1; e < s.elements(); ++e) gap = std::min(gap, s.contact(e, x).gap);
+          return gap;
+        }
+      },
+      shape);
+}
 
 }  // namespace grainflow::walls
