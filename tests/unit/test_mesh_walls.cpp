@@ -66,8 +66,6 @@ TriangleMesh tessellated_plane(double x0, double x1, double z0, double z1, int n
 // vertex's, whose direction carries ~1e-16 of in-plane residue).
 TEST(MeshSurface, ATessellatedPlaneGivesThePlanesContactEverywhere) {
   const MeshSurface surface(tessellated_plane(-1.0, 1.0, -1.0, 1.0, 8, 8, 0.3));
-  std::vector<std::uint32_t> all(surface.size());
-  std::iota(all.begin(), all.end(), 0u);
   std::vector<Vec3> points;
   for (const Vec3& v : surface.vertices()) points.push_back(v + Vec3{0.0, 0.09, 0.0});  // over each vertex
   for (const MeshFacet& f : surface.facets()) {
@@ -79,7 +77,7 @@ TEST(MeshSurface, ATessellatedPlaneGivesThePlanesContactEverywhere) {
   for (const Vec3& x : points) {
     if (std::fabs(x.x) > 0.8 || std::fabs(x.z) > 0.8) continue;  // away from the rectangle's rim
     std::array<SurfaceContact, MeshSurface::kMaxContacts> out;
-    const int n = surface.contacts(x, 0.1, all.data(), all.size(), out.data());
+    const int n = surface.contacts(x, 0.1, surface.facets().data(), surface.size(), out.data());
     ASSERT_EQ(n, 1) << "at (" << x.x << ", " << x.y << ", " << x.z << ")";
     EXPECT_NEAR(out[0].gap, x.y, 1e-15);
     EXPECT_NEAR(out[0].normal.y, 1.0, 1e-15);
@@ -100,10 +98,9 @@ TEST(MeshSurface, ARidgePushesOnceAndAGrooveTwice) {
                   {-1.0, sign * slope, 1.0},  {0.0, 0.0, 1.0},  {1.0, sign * slope, 1.0}};
     m.triangles = {{0, 3, 4}, {0, 4, 1}, {1, 4, 5}, {1, 5, 2}};
     const MeshSurface surface(m);
-    const std::vector<std::uint32_t> all{0, 1, 2, 3};
     std::array<SurfaceContact, MeshSurface::kMaxContacts> out;
     const Vec3 x{0.0, 0.5, 0.1};
-    const int n = surface.contacts(x, 1.0, all.data(), all.size(), out.data());
+    const int n = surface.contacts(x, 1.0, surface.facets().data(), surface.size(), out.data());
     if (sign < 0.0) {
       ASSERT_EQ(n, 1);
       EXPECT_DOUBLE_EQ(out[0].gap, 0.5);
@@ -134,10 +131,8 @@ TEST(MeshSurface, ACubesCornerIsThreeFacesInsideAndOneVertexOutside) {
     cube.triangles.push_back({f[0], f[2], f[3]});
   }
   const MeshSurface surface(cube);
-  std::vector<std::uint32_t> all(surface.size());
-  std::iota(all.begin(), all.end(), 0u);
   std::array<SurfaceContact, MeshSurface::kMaxContacts> out;
-  int n = surface.contacts({0.1, 0.1, 0.1}, 0.15, all.data(), all.size(), out.data());
+  int n = surface.contacts({0.1, 0.1, 0.1}, 0.15, surface.facets().data(), surface.size(), out.data());
   ASSERT_EQ(n, 3);
   Vec3 sum;
   for (int k = 0; k < n; ++k) {
@@ -146,12 +141,12 @@ TEST(MeshSurface, ACubesCornerIsThreeFacesInsideAndOneVertexOutside) {
   }
   EXPECT_NEAR(norm(sum - Vec3{1.0, 1.0, 1.0}), 0.0, 1e-15);
   const double d = 0.05;
-  n = surface.contacts({1.0 + d, 1.0 + d, 1.0 + d}, 0.1, all.data(), all.size(), out.data());
+  n = surface.contacts({1.0 + d, 1.0 + d, 1.0 + d}, 0.1, surface.facets().data(), surface.size(), out.data());
   ASSERT_EQ(n, 1);
   EXPECT_NEAR(out[0].gap, std::sqrt(3.0) * d, 1e-15);
   EXPECT_NEAR(norm(out[0].normal - Vec3{1.0, 1.0, 1.0} * (1.0 / std::sqrt(3.0))), 0.0, 1e-15);
   // Beyond an edge's middle: the edge, once, though two triangles of each of two faces meet there.
-  n = surface.contacts({0.5, 1.0 + d, 1.0 + d}, 0.1, all.data(), all.size(), out.data());
+  n = surface.contacts({0.5, 1.0 + d, 1.0 + d}, 0.1, surface.facets().data(), surface.size(), out.data());
   ASSERT_EQ(n, 1);
   EXPECT_NEAR(out[0].gap, std::sqrt(2.0) * d, 1e-15);
 }

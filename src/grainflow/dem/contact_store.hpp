@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "grainflow/dem/neighbor_list.hpp"
+#include "grainflow/walls/mesh_surface.hpp"
 #include "grainflow/walls/surface_contact.hpp"
 
 namespace grainflow::dem {
@@ -29,12 +30,16 @@ struct WallContactList {
   // at the last force evaluation.
   std::vector<std::uint32_t> candidate_offsets, candidates;
   std::vector<walls::SurfaceContact> contact;
+  // Copies of the candidates' triangles in list order (a step streams through them); not saved:
+  // remade from `candidates` whenever their counts differ.
+  std::vector<walls::MeshFacet> candidate_facets;
 
   std::size_t size() const { return particle.size(); }
   std::size_t elements() const { return offsets.size() - 1; }
   template <class Archive>
   void serialize(Archive& ar) {
     ar(offsets, particle, state, touching, candidate_offsets, candidates, contact);
+    candidate_facets.clear();
   }
 };
 

@@ -48,6 +48,7 @@ void DemEngine<Law, Rolling>::build_mesh_list(std::size_t w, const walls::MeshWa
   std::vector<std::uint32_t> near;
   list.candidate_offsets.assign(1, 0);
   list.candidates.clear();
+  list.candidate_facets.clear();  // remade by the next force evaluation
   // The tree is asked in the mesh's own frame; a particle beyond its box and the reach is skipped at once.
   const Vec3 lo = mesh.surface->lo(), hi = mesh.surface->hi();
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -186,6 +187,10 @@ ForceLoopSums DemEngine<Law, Rolling>::mesh_forces_on(std::size_t w, const walls
   const Params& params = wall_params_[w];
   auto& list = contacts_.walls[w];
   const std::size_t n = list.elements() == 0 ? 0 : list.offsets[1];
+  if (list.candidate_facets.size() != list.candidates.size()) {
+    list.candidate_facets.clear();
+    for (std::uint32_t f : list.candidates) list.candidate_facets.push_back(mesh.surface->facets()[f]);
+  }
   // Particle by particle (its slots together): each appears once in a slot's block.
   return reduce_slices(
       threads_, n, ForceLoopSums{}, [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
@@ -194,8 +199,9 @@ ForceLoopSums DemEngine<Law, Rolling>::mesh_forces_on(std::size_t w, const walls
           const std::uint32_t i = list.particle[k];
           std::array<walls::SurfaceContact, kSlots> found;
           const std::uint32_t from = list.candidate_offsets[k];
-          const int count = mesh.contacts(p.position[i], p.radius[i] + s_.cohesion_reach, list.candidates.data() + from,
-                                          list.candidate_offsets[k + 1] - from, found.data());
+          const int count = mesh.contacts(p.position[i], p.radius[i] + s_.cohesion_reach,
+                                          list.candidate_facets.data() + from, list.candidate_offsets[k + 1] - from,
+                                          found.data());
           // Each contact continues the touching slot whose last normal it follows most closely (a
           // step turns a normal by far less than 60 degrees), or starts in a slot no contact continues.
           std::array<int, kSlots> slot;

@@ -1,6 +1,8 @@
 #include "grainflow/walls/mesh_surface.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -29,6 +31,8 @@ MeshSurface::MeshSurface(const TriangleMesh& mesh) : vertices_(mesh.vertices) {
     const Vec3 n = cross(t.ab, t.ac);
     if (!(norm(n) > 0.0)) throw std::invalid_argument("triangle " + std::to_string(f + 1) + " has zero area");
     t.normal = n * (1.0 / norm(n));
+    // Ericson's v for an edge is minus the foot's distance from it times |n| times the edge's length.
+    t.edge_scale = {norm(n) * norm(t.ab), norm(n) * norm(vertices_[k] - vertices_[j]), norm(n) * norm(t.ac)};
     t.centre = (1.0 / 3.0) * (vertices_[i] + vertices_[j] + vertices_[k]);
     Vec3 lo = t.a, hi = t.a;
     for (std::uint32_t v : t.vertex) {
@@ -63,19 +67,27 @@ MeshSurface::MeshSurface(const TriangleMesh& mesh) : vertices_(mesh.vertices) {
   }
   for (std::size_t e = 0; e < edges_.size(); ++e)
     if (!flat_edge_[e]) flat_vertex_[edges_[e][0]] = flat_vertex_[edges_[e][1]] = 0;  // a rim's or a ridge's ends
+  for (std::size_t f = 0; f < facets_.size(); ++f) {
+    MeshFacet& t = facets_[f];
+    t.index = static_cast<std::uint32_t>(f);
+    for (int k = 0; k < 3; ++k) {
+      t.flat_edge[k] = flat_edge_[t.edge[k]];
+      t.flat_vertex[k] = flat_vertex_[t.vertex[k]];
+    }
+  }
 }
 
 void MeshSurface::near(const Vec3& x, double reach, std::vector<std::uint32_t>& out) const {
   const std::size_t first = out.size();
   tree_.near(x, reach, [&](std::uint32_t f) {
-    if (touch(f, x).contact.gap < reach) out.push_back(f);
+    if (touch(facets_[f], x).contact.gap < reach) out.push_back(f);
   });
   std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
 }
 
 double MeshSurface::nearest_distance(const Vec3& x, double reach) const {
   double nearest = reach;
-  tree_.near(x, reach, [&](std::uint32_t f) { nearest = std::min(nearest, touch(f, x).contact.gap); });
+  tree_.near(x, reach, [&](std::uint32_t f) { nearest = std::min(nearest, touch(facets_[f], x).contact.gap); });
   return nearest;
 }
 
@@ -98,38 +110,50 @@ SurfaceContact MeshSurface::vertex_contact(std::uint32_t v, const Vec3& x, const
 
 // The regions of the nearest point as in Ericson, Real-Time Collision Detection (2005), 5.1.5; the
 // point itself from the shared edge or vertex, never from this triangle's own corner order.
-FacetTouch MeshSurface::touch(std::uint32_t f, const Vec3& x) const {
-  const MeshFacet& t = facets_[f];
+FacetTouch MeshSurface::touch(const MeshFacet& t, const Vec3& x, bool skip_redundant) const {
+  const std::uint32_t f = t.index;
   const Vec3 ap = x - t.a;
-  // The plane's contact where a flat region's inner edge or vertex lies right under x.
-  const auto on_plane = [&](const FacetTouch& touched, bool flat) {
-    if (!flat) return touched;
-    const double h = dot(ap, t.normal), g = touched.contact.gap;
-    if (g * g - h * h > 1e-12 * t.bound * t.bound) return touched;
-    return FacetTouch{h >= 0.0 ? SurfaceContact{h, t.normal} : SurfaceContact{-h, -t.normal},
-                      FacetTouch::Feature::face, f, f};
+  const double h = dot(ap, t.normal);
+  const double tolerance = 1e-6 * t.bound;  // x's foot this near a flat edge or vertex is right under it
+  const FacetTouch plane{h >= 0.0 ? SurfaceContact{h, t.normal} : SurfaceContact{-h, -t.normal},
+                         FacetTouch::Feature::face, f, f, false};
+  const FacetTouch passed_over{{std::numeric_limits<double>::infinity(), t.normal}, FacetTouch::Feature::face, f, f,
+                               true};
+  // A flat region's inner vertex or edge: the plane's contact right under x, else passed over
+  // (decided from the foot's distance to it, `offset`, before any distance is computed).
+  const auto vertex = [&](int k, const Vec3& p) {
+    if (t.flat_vertex[k]) {
+      if (dot(p, p) - h * h <= tolerance * tolerance) return plane;
+      if (skip_redundant) return passed_over;
+    }
+    FacetTouch touched{vertex_contact(t.vertex[k], x, t.normal), FacetTouch::Feature::vertex, f, t.vertex[k], false};
+    touched.redundant = t.flat_vertex[k] != 0;
+    return touched;
   };
-  const auto vertex = [&](int k) {
-    return on_plane({vertex_contact(t.vertex[k], x, t.normal), FacetTouch::Feature::vertex, f, t.vertex[k]},
-                    flat_vertex_[t.vertex[k]]);
-  };
-  const auto edge = [&](int k) {
-    return on_plane({edge_contact(t.edge[k], x, t.normal), FacetTouch::Feature::edge, f, t.edge[k]},
-                    flat_edge_[t.edge[k]]);
+  const auto edge = [&](int k, double v) {  // v: minus the foot's distance from the edge, times 2 area x length
+    if (t.flat_edge[k]) {
+      if (-v <= tolerance * t.edge_scale[k]) return plane;
+      if (skip_redundant) return passed_over;
+    }
+    FacetTouch touched{edge_contact(t.edge[k], x, t.normal), FacetTouch::Feature::edge, f, t.edge[k], false};
+    touched.redundant = t.flat_edge[k] != 0;
+    return touched;
   };
   const double d1 = dot(t.ab, ap), d2 = dot(t.ac, ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return vertex(0);
+  if (d1 <= 0.0 && d2 <= 0.0) return vertex(0, ap);
   const Vec3 bp = ap - t.ab;
   const double d3 = dot(t.ab, bp), d4 = dot(t.ac, bp);
-  if (d3 >= 0.0 && d4 <= d3) return vertex(1);
-  if (d1 * d4 - d3 * d2 <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return edge(0);
+  if (d3 >= 0.0 && d4 <= d3) return vertex(1, bp);
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return edge(0, vc);
   const Vec3 cp = ap - t.ac;
   const double d5 = dot(t.ab, cp), d6 = dot(t.ac, cp);
-  if (d6 >= 0.0 && d5 <= d6) return vertex(2);
-  if (d5 * d2 - d1 * d6 <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return edge(2);
-  if (d3 * d6 - d5 * d4 <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) return edge(1);
-  const double h = dot(ap, t.normal);
-  return {h >= 0.0 ? SurfaceContact{h, t.normal} : SurfaceContact{-h, -t.normal}, FacetTouch::Feature::face, f, f};
+  if (d6 >= 0.0 && d5 <= d6) return vertex(2, cp);
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return edge(2, vb);
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) return edge(1, va);
+  return plane;
 }
 
 bool MeshSurface::joined(const FacetTouch& a, const FacetTouch& b, const Vec3& x, double within) const {
@@ -144,17 +168,25 @@ bool MeshSurface::joined(const FacetTouch& a, const FacetTouch& b, const Vec3& x
   return false;
 }
 
-int MeshSurface::contacts(const Vec3& x, double within, const std::uint32_t* candidates, std::size_t count,
+int MeshSurface::contacts(const Vec3& x, double within, const MeshFacet* candidates, std::size_t count,
                           SurfaceContact* out) const {
   std::array<FacetTouch, kMaxTouches> touches;
   int n = 0;
+  const double screen2 = within * within * (1.0 + 1e-9);  // the screens' round-off never hides a touch
   for (std::size_t k = 0; k < count && n < kMaxTouches; ++k) {
-    const MeshFacet& t = facets_[candidates[k]];
+    // The sphere cuts the triangle's plane in a disc of radius sqrt(within^2 - h^2) about x's
+    // foot: the triangle must reach into it (its circumscribing circle, in the plane, at least):
+    // |foot - centre| < sqrt(across) + bound, squared twice so that no root is taken.
+    const MeshFacet& t = candidates[k];
+    const double h = dot(x - t.a, t.normal);
+    const double across = screen2 - h * h;
+    if (across <= 0.0) continue;
     const Vec3 d = x - t.centre;
-    const double reach = within + t.bound;
-    if (dot(d, d) >= reach * reach) continue;
-    const FacetTouch touched = touch(candidates[k], x);
-    if (touched.contact.gap < within) touches[n++] = touched;
+    const double dn = dot(d, t.normal);
+    const double beyond = dot(d, d) - dn * dn - across - t.bound * t.bound;
+    if (beyond > 0.0 && beyond * beyond >= 4.0 * t.bound * t.bound * across) continue;
+    const FacetTouch touched = touch(t, x, true);
+    if (touched.contact.gap < within && !touched.redundant) touches[n++] = touched;
   }
   if (n <= 1) {
     if (n == 1) out[0] = touches[0].contact;

@@ -9,7 +9,8 @@
 // touches are all edges or vertices (a convex ridge or corner: every triangle's nearest point is
 // the shared edge or vertex) is one contact, at its nearest point. An edge or vertex inside a flat
 // region (its triangles coplanar, to 1e-6 rad: float STL files) is no ridge: a centre right above
-// it touches the plane there, as a face. Two face touches at the same point (1e-6 of the reach
+// it touches the plane there, as a face, and elsewhere it is passed over (the face under the
+// centre, or the region's rim, is nearer in the same patch). Two face touches at the same point (1e-6 of the reach
 // apart, a flat region's shared edge seen from both sides) are one. So a sphere on a tessellated
 // plane feels one contact wherever it is, exactly the plane's, and one crossing a ridge is pushed
 // once, not once per triangle. Edge and vertex distances are computed from the shared corners in
@@ -39,8 +40,11 @@ struct MeshFacet {
   Vec3 normal;     // unit, (b - a) x (c - a): the front
   Vec3 centre;     // of a sphere around the triangle: a quick test of reach
   double bound = 0.0;                    // radius of that sphere
+  std::array<double, 3> edge_scale{};    // |(b - a) x (c - a)| times the length of edge ab, bc, ca
   std::array<std::uint32_t, 3> vertex;   // welded corners a, b, c
   std::array<std::uint32_t, 3> edge;     // edges ab, bc, ca: indices into MeshSurface::edges
+  std::uint32_t index = 0;               // its number in the surface
+  std::array<std::uint8_t, 3> flat_edge{}, flat_vertex{};  // inside a flat region (below)
 };
 
 // Where a sphere touches one triangle: the surface contact and the feature (face, edge, vertex) the
@@ -51,6 +55,9 @@ struct FacetTouch {
   Feature feature = Feature::face;
   std::uint32_t facet = 0;
   std::uint32_t id = 0;  // the facet's, the edge's or the vertex's index
+  // A flat region's inner edge or vertex, not right under the centre: never a contact of its own
+  // (the face under the centre, or the region's rim, is nearer in the same patch).
+  bool redundant = false;
 };
 
 class MeshSurface {
@@ -75,12 +82,16 @@ class MeshSurface {
   void near(const Vec3& x, double reach, std::vector<std::uint32_t>& out) const;
   // The distance from x to the nearest triangle, or `reach` when none is nearer.
   double nearest_distance(const Vec3& x, double reach) const;
-  // Where x lies against triangle f: the nearest point's feature and the two-sided contact.
-  FacetTouch touch(std::uint32_t f, const Vec3& x) const;
+  // Where x lies against triangle t: the nearest point's feature and the two-sided contact.
+  // `skip_redundant`: a touch marked redundant is not measured (its gap is infinite).
+  FacetTouch touch(const MeshFacet& t, const Vec3& x, bool skip_redundant = false) const;
+  FacetTouch touch(std::uint32_t f, const Vec3& x) const { return touch(facets_[f], x); }
   // The contacts of a sphere centred at x with the surface, among the triangles `candidates`
-  // (those that may come within `within` of x), by the rule above: those nearer than `within`,
-  // deepest first. Returns how many were written to `out` (at most kMaxContacts).
-  int contacts(const Vec3& x, double within, const std::uint32_t* candidates, std::size_t count,
+  // (copies of those that may come within `within` of x, laid out in the order a step reads them:
+  // a step then streams through memory instead of jumping about the mesh), by the rule above:
+  // those nearer than `within`, deepest first. Returns how many were written to `out` (at most
+  // kMaxContacts).
+  int contacts(const Vec3& x, double within, const MeshFacet* candidates, std::size_t count,
                SurfaceContact* out) const;
 
  private:

@@ -51,7 +51,7 @@ struct MeshWall {
     return pose.origin + back(x - pose.shift - pose.origin);
   }
   // The contacts of a sphere at x, among `candidates` (triangles listed near it), normals in the box.
-  int contacts(const Vec3& x, double within, const std::uint32_t* candidates, std::size_t count,
+  int contacts(const Vec3& x, double within, const MeshFacet* candidates, std::size_t count,
                SurfaceContact* out) const {
     const int n = surface->contacts(to_mesh(x), within, candidates, count, out);
     if (!pose.rotation.identity)
