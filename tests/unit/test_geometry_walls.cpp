@@ -13,6 +13,7 @@
 #include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/run/case_loader.hpp"
+#include "sphere_path.hpp"
 #include "test_support.hpp"
 
 using namespace grainflow;
@@ -23,25 +24,10 @@ namespace {
 constexpr double kG = 9.81, kTheta = 0.35;  // rad, ~20 degrees
 constexpr double kDiameter = 0.002;
 
-// Each law's keys, particles' and walls' (Hertzian laws need the glass's elastic constants).
-std::string law_keys(std::string_view law) {
-  if (law == "walton_braun") return "model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.8\nfriction = 0.3\n";
-  if (law == "linear_dashpot") return "model = \"linear_dashpot\"\nkn = 1.0e4\ngamma_n = 0.05\nfriction = 0.3\n";
-  if (law == "hertz_mindlin") return "model = \"hertz_mindlin\"\nrestitution = 0.8\nfriction = 0.3\n";
-  return "model = \"jkr\"\nrestitution = 0.8\nsurface_energy = 0.002\nfriction = 0.3\n";
-}
-std::string wall_keys(std::string_view law) {
-  if (law == "walton_braun") return "restitution = 0.6\nfriction = 0.4\n";
-  if (law == "linear_dashpot") return "gamma_n = 0.08\nfriction = 0.4\n";
-  return "restitution = 0.6\nyoungs_modulus = 2.0e8\nfriction = 0.4\n";
-}
-std::string species_keys(std::string_view law) {
-  return law == "walton_braun" || law == "linear_dashpot" ? "" : "youngs_modulus = 1.0e8\npoisson_ratio = 0.25\n";
-}
-
-struct Motion3 {
-  Vec3 x, v, w;
-};
+using test::law_keys;
+using test::Motion3;
+using test::species_keys;
+using test::wall_keys;
 
 // One sphere released 0.3 d above the wall, moving down the slope and towards the wall with some
 // spin: it bounces, slides and then rolls. `tilted_plane`: gravity vertical and the wall a plane
@@ -108,12 +94,7 @@ TEST(GeometryWalls, TiltedPlaneMovesTheSphereAsTiltedGravityDoesForEveryLaw) {
   for_each_contact_law([&]<ContactLaw Law>() {
     const auto face = run_sphere(Law::name, false, 20000), plane = run_sphere(Law::name, true, 20000);
     ASSERT_EQ(face.size(), plane.size());
-    double dx = 0.0, dv = 0.0, dw = 0.0;
-    for (std::size_t k = 0; k < face.size(); ++k) {
-      dx = std::max(dx, norm(face[k].x - plane[k].x));
-      dv = std::max(dv, norm(face[k].v - plane[k].v));
-      dw = std::max(dw, norm(face[k].w - plane[k].w));
-    }
+    const auto [dx, dv, dw] = test::largest_differences(face, plane);
     EXPECT_LT(dx, 1e-11) << Law::name;
     EXPECT_LT(dv, 1e-8) << Law::name;
     EXPECT_LT(dw, 1e-5) << Law::name;

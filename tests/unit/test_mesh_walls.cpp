@@ -16,6 +16,7 @@
 #include "grainflow/dem/engine_factory.hpp"
 #include "grainflow/walls/mesh_surface.hpp"
 #include "grainflow/walls/stl_file.hpp"
+#include "sphere_path.hpp"
 #include "test_support.hpp"
 
 using namespace grainflow;
@@ -171,29 +172,16 @@ namespace {
 constexpr double kG = 9.81, kTheta = 0.35;  // rad, ~20 degrees
 constexpr double kDiameter = 0.002;
 
-std::string law_keys(std::string_view law) {
-  if (law == "walton_braun") return "model = \"walton_braun\"\nk1 = 1.0e4\nrestitution = 0.8\nfriction = 0.3\n";
-  if (law == "linear_dashpot") return "model = \"linear_dashpot\"\nkn = 1.0e4\ngamma_n = 0.05\nfriction = 0.3\n";
-  if (law == "hertz_mindlin") return "model = \"hertz_mindlin\"\nrestitution = 0.8\nfriction = 0.3\n";
-  return "model = \"jkr\"\nrestitution = 0.8\nsurface_energy = 0.002\nfriction = 0.3\n";
-}
-std::string wall_keys(std::string_view law) {
-  if (law == "walton_braun") return "restitution = 0.6\nfriction = 0.4\n";
-  if (law == "linear_dashpot") return "gamma_n = 0.08\nfriction = 0.4\n";
-  return "restitution = 0.6\nyoungs_modulus = 2.0e8\nfriction = 0.4\n";
-}
-std::string species_keys(std::string_view law) {
-  return law == "walton_braun" || law == "linear_dashpot" ? "" : "youngs_modulus = 1.0e8\npoisson_ratio = 0.25\n";
-}
-
-struct Motion3 {
-  Vec3 x, v, w;
-};
+using test::law_keys;
+using test::Motion3;
+using test::species_keys;
+using test::wall_keys;
 
 // One sphere released 0.3 d above the plane y = 0 under gravity tilted by theta along x, thrown
 // across it with spin: it bounces, slides, then rolls ~2.5 cm in 0.04 s, over some 20 triangles of
 // 0.6 d (jittered: edges and vertices at every angle) when the plane is a mesh.
-std::vector<Motion3> run_on_plane(std::string_view law, const std::string& plane_keys, int steps) {
+std::vector<Motion3> run_on_plane(std::string_view law, const std::string& plane_keys, int steps,
+                                  const std::string& motion = "") {
   std::ostringstream row, t;
   row.precision(17);
   row << "glass,-0.01," << 1.3 * 0.5 * kDiameter << ",0.0,0.5,-0.1,0.2,0.0,0.0,-20.0\n";
@@ -204,7 +192,7 @@ std::vector<Motion3> run_on_plane(std::string_view law, const std::string& plane
     << "[gravity]\nvector = [" << kG * std::sin(kTheta) << ", " << -kG * std::cos(kTheta) << ", 0.0]\n"
     << "[[species]]\nname = \"glass\"\ndiameter = " << kDiameter << "\ndensity = 2500.0\n" << species_keys(law)
     << "[particles]\ninit = \"file\"\nfile = \"" << csv.path() << "\"\n[contact]\n" << law_keys(law)
-    << "[[geometry]]\nname = \"floor\"\n" << plane_keys << wall_keys(law)
+    << "[[geometry]]\nname = \"floor\"\n" << plane_keys << wall_keys(law) << motion
     << "[run]\nduration = 1.0\ntime_step = 2.0e-6\n";
   auto engine = test::engine_from_toml(t.str(), testing::TempDir() + "mesh_plane.toml", 1);
   std::vector<Motion3> path;
@@ -234,17 +222,39 @@ TEST(MeshWalls, ASphereOnATessellatedPlaneMovesAsOnThePlaneForEveryLaw) {
     const auto plane = run_on_plane(Law::name, "type = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n", 20000);
     const auto mesh = run_on_plane(Law::name, "type = \"mesh\"\nfile = \"" + stl + "\"\n", 20000);
     ASSERT_EQ(plane.size(), mesh.size());
-    double dx = 0.0, dv = 0.0, dw = 0.0;
-    for (std::size_t k = 0; k < plane.size(); ++k) {
-      dx = std::max(dx, norm(plane[k].x - mesh[k].x));
-      dv = std::max(dv, norm(plane[k].v - mesh[k].v));
-      dw = std::max(dw, norm(plane[k].w - mesh[k].w));
-    }
+    const auto [dx, dv, dw] = test::largest_differences(plane, mesh);
     EXPECT_LE(dx, 1e-11) << Law::name;
     EXPECT_LE(dv, 1e-8) << Law::name;
     EXPECT_LE(dw, 1e-5) << Law::name;
     EXPECT_GT(norm(mesh.back().x - mesh.front().x), 15 * 0.0012) << Law::name << ": it should cross ~20 triangles";
   });
+}
+
+// A moving mesh carries its pose: the tessellated plane turning about its normal (a turntable at
+// 20 rad/s, which drags the sphere round) or rising along it at 1 cm/s moves the sphere as the
+// analytic plane does, whose surface stays where it is (turning) or moves by the same shift. The
+// mesh's triangles are turned and the centre taken back into their frame, which rounds differently
+// from the plane's own arithmetic: the tolerances of the still plane's test.
+TEST(MeshWalls, ATurningOrRisingMeshMovesTheSphereAsThePlaneDoes) {
+  const std::string stl = temp_path("floor_moving.stl");
+  write_stl(tessellated_plane(-0.03, 0.03, -0.03, 0.03, 50, 50, 0.3), stl, true);
+  for (const std::string motion : {"[geometry.motion]\nangular_velocity = [0.0, 20.0, 0.0]\n",
+                                   "[geometry.motion]\nvelocity = [0.0, 0.01, 0.0]\n"}) {
+    const auto plane = run_on_plane("linear_dashpot",
+                                    "type = \"plane\"\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 1.0, 0.0]\n", 20000, motion);
+    const auto mesh = run_on_plane("linear_dashpot", "type = \"mesh\"\nfile = \"" + stl + "\"\n", 20000, motion);
+    ASSERT_EQ(plane.size(), mesh.size());
+    const auto [dx, dv, dw] = test::largest_differences(plane, mesh);
+    EXPECT_LE(dx, 1e-11) << motion;
+    EXPECT_LE(dv, 1e-8) << motion;
+    EXPECT_LE(dw, 1e-5) << motion;
+  }
+  // The turntable did drag the sphere (0.6 mm off the still floor's path by 0.04 s): a wall taken as
+  // still would leave the two paths 1e-11 m apart.
+  const auto still = run_on_plane("linear_dashpot", "type = \"mesh\"\nfile = \"" + stl + "\"\n", 20000);
+  const auto turning = run_on_plane("linear_dashpot", "type = \"mesh\"\nfile = \"" + stl + "\"\n", 20000,
+                                    "[geometry.motion]\nangular_velocity = [0.0, 20.0, 0.0]\n");
+  EXPECT_GT(norm(still.back().x - turning.back().x), 1e-4);
 }
 
 // A frictionless sphere dropped off-centre into a V-groove (faces at 45 degrees, meeting along the

@@ -6,6 +6,7 @@
 #include "grainflow/config/restitution_laws.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/run/case_loader.hpp"
+#include "grainflow/walls/wall_types.hpp"
 
 namespace grainflow::run {
 
@@ -102,6 +103,16 @@ void print_geometry(const CaseConfig& c, std::ostream& out) {
       else keys += fmt::format("{:.6g}", k.value.x);
     }
     out << fmt::format("  geometry {:<19} {}: {}\n", g.name, g.type, keys);
+    const walls::WallShape shape = walls::make_wall_shape(g);
+    if (const auto* mesh = std::get_if<walls::MeshWall>(&shape)) {
+      const walls::MeshReport& r = mesh->surface->report();
+      const Vec3 size = mesh->surface->hi() - mesh->surface->lo();
+      out << fmt::format("{:30}{} triangles ({} STL), {}, {} piece{}, {:.6g} x {:.6g} x {:.6g} m{}\n", "",
+                         mesh->surface->size(), r.binary ? "binary" : "ASCII", r.closed ? "closed" : "open", r.pieces,
+                         r.pieces == 1 ? "" : "s", size.x, size.y, size.z,
+                         r.flipped ? fmt::format("; {} triangles turned over to agree with their neighbours", r.flipped)
+                                   : std::string());
+    }
     const GeometryMotionConfig& m = g.motion;
     if (!m.moves()) continue;
     std::string motion;

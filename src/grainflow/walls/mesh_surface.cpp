@@ -10,7 +10,7 @@
 
 namespace grainflow::walls {
 
-MeshSurface::MeshSurface(const TriangleMesh& mesh) : vertices_(mesh.vertices) {
+MeshSurface::MeshSurface(const TriangleMesh& mesh, MeshReport report) : vertices_(mesh.vertices), report_(report) {
   std::map<std::array<std::uint32_t, 2>, std::uint32_t> edge_index;
   const auto edge_of = [&](std::uint32_t p, std::uint32_t q) {
     const std::array<std::uint32_t, 2> key{std::min(p, q), std::max(p, q)};

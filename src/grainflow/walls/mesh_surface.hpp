@@ -69,8 +69,10 @@ class MeshSurface {
   static constexpr int kMaxTouches = 64;
 
   MeshSurface() = default;
-  // From a checked mesh (check_mesh); throws std::invalid_argument for a degenerate triangle.
-  explicit MeshSurface(const TriangleMesh& mesh);
+  // From a checked mesh (check_mesh, whose findings `report` keeps); throws std::invalid_argument
+  // for a degenerate triangle.
+  explicit MeshSurface(const TriangleMesh& mesh, MeshReport report = {});
+  const MeshReport& report() const { return report_; }
 
   std::size_t size() const { return facets_.size(); }
   const std::vector<Vec3>& vertices() const { return vertices_; }
@@ -104,6 +106,7 @@ class MeshSurface {
   std::vector<std::uint8_t> flat_edge_, flat_vertex_;  // inside a flat region: its triangles coplanar
   std::vector<MeshFacet> facets_;
   TriangleTree tree_;
+  MeshReport report_;
 };
 
 }  // namespace grainflow::walls

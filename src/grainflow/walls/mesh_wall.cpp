@@ -25,13 +25,15 @@ std::shared_ptr<const MeshSurface> load(const GeometryKeys& k) {
       << k.number("rotate_degrees") << ' ' << shift.x << ' ' << shift.y << ' ' << shift.z << ' ' << k.boolean("closed");
   const std::lock_guard lock(guard);
   if (auto it = loaded.find(key.str()); it != loaded.end()) return it->second;
-  TriangleMesh mesh = read_stl(path, "file");
-  check_mesh(mesh, path, "file", k.boolean("closed"));
+  MeshReport read;
+  TriangleMesh mesh = read_stl(path, "file", &read);
+  MeshReport report = check_mesh(mesh, path, "file", k.boolean("closed"));
+  report.binary = read.binary;
   const Rotation turn = Rotation::about(axis * (M_PI / 180.0 * k.number("rotate_degrees") / norm(axis)), 1.0);
   for (Vec3& v : mesh.vertices) v = turn(k.number("scale") * v) + shift;
   std::shared_ptr<const MeshSurface> surface;
   try {
-    surface = std::make_shared<const MeshSurface>(mesh);
+    surface = std::make_shared<const MeshSurface>(mesh, report);
   } catch (const std::invalid_argument& e) {  // a sliver that the scaling or turning flattened
     throw InputError(path, "file", e.what());
   }
