@@ -1,5 +1,6 @@
 """Checkpoints and restarts: a run split in two by a checkpoint ends bitwise identical to
-the unsplit run, for a DEM vibrated bed and an event-driven chute; SIGINT and SIGTERM write a
+the unsplit run, for a DEM vibrated bed, a DEM drum whose wall is a turning STL mesh and an
+event-driven chute; SIGINT and SIGTERM write a
 checkpoint and every output and exit with 130 / 143; a run killed with SIGKILL at any moment
 leaves readable outputs and a checkpoint it continues from exactly, HDF5 streams included (the
 checkpoint's copies of trajectory.h5 and zone_series.h5 carry them across); bad checkpoints are refused
@@ -35,6 +36,9 @@ BED_SETS = ["--set", "particles.expansion_time=0.02", "--set", "drive.start=0.05
             "--set", "zone_series.start=0.06", "--set", "zone_series.samples=100"]
 # Campbell's chute with its collision stresses, and a trajectory.h5 of instantaneous states.
 CHUTE = "cases/campbell1982/chute_30deg.toml"
+MESH_DRUM = "cases/geometry/mesh_drum.toml"
+MESH_DRUM_SETS = ["--set", "output.snapshot_interval=1.0", "--set", "output.interval=0.5", "--set", "trajectory.start=1.0",
+                  "--set", "trajectory.samples=20"]
 CHUTE_SETS = ["--set", "output.average_start=100", "--set", "trajectory.samples=60", "--set", "trajectory.interval=2"]
 
 
@@ -166,6 +170,9 @@ def main():
         # Split against unsplit, both engines.
         split_run(exe, tmp, BED, BED_SETS, 0.2, 0.1, "dem_bed")
         split_run(exe, tmp, CHUTE, CHUTE_SETS, 300, 150, "edmd_chute")
+        # A turning STL mesh (the drum with lifters): its contacts' slots, their last normals and
+        # each particle's listed triangles are in the checkpoint.
+        split_run(exe, tmp, MESH_DRUM, MESH_DRUM_SETS, 4.0, 2.0, "dem_mesh_drum")
 
         # SIGINT on a DEM run, SIGTERM on an event-driven one: checkpoint, outputs, 130 / 143; the
         # continued run then matches one that never stopped, up to a common end on the output grid.
