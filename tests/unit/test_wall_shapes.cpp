@@ -98,6 +98,27 @@ TEST(WallShapes, DiscPlaneHasAnEdge) {
   EXPECT_NEAR(norm(edge.normal - Vec3{0.6, 0.8, 0.0}), 0.0, kTight);
 }
 
+// A silo's floor with an orifice: outside the hole the plane (from either side: particles pass
+// through it), inside the nearest point of the hole's rim; the two agree where the foot meets the rim.
+TEST(WallShapes, HoledPlaneIsTwoSidedWithARim) {
+  PlaneWall w;
+  w.point = {0.0, 0.0, 0.0};
+  w.normal = {0.0, 1.0, 0.0};
+  w.hole = 1.0;
+  EXPECT_NEAR(w.contact(0, {2.0, 0.3, 0.0}).gap, 0.3, kTight);
+  const SurfaceContact below = w.contact(0, {0.0, -0.3, 2.0});
+  EXPECT_NEAR(below.gap, 0.3, kTight);
+  EXPECT_NEAR(norm(below.normal - Vec3{0.0, -1.0, 0.0}), 0.0, kTight);
+  const SurfaceContact rim = w.contact(0, {0.0, 0.4, 0.7});  // 0.3 inside the rim, 0.4 above: 0.5 from it
+  EXPECT_NEAR(rim.gap, 0.5, kTight);
+  EXPECT_NEAR(norm(rim.normal - Vec3{0.0, 0.8, -0.6}), 0.0, kTight);
+  const SurfaceContact under = w.contact(0, {0.0, -0.4, -0.7});  // and from below
+  EXPECT_NEAR(under.gap, 0.5, kTight);
+  EXPECT_NEAR(norm(under.normal - Vec3{0.0, -0.8, 0.6}), 0.0, kTight);
+  EXPECT_NEAR(w.contact(0, {1.0, 0.25, 0.0}).gap, 0.25, kTight);  // on the rim's line: both give 0.25
+  EXPECT_NEAR(w.contact(0, {1.0 - 1e-12, 0.25, 0.0}).gap, 0.25, 1e-12);
+}
+
 TEST(WallShapes, RigidMotionTurnsAndShiftsTheShape) {
   PlaneWall w;
   w.point = {1.0, 0.0, 0.0};

@@ -52,7 +52,7 @@ void validate_planar(const CaseConfig& c) {
     const GeometryConfig& geometry = c.geometry[g];
     const std::string key = "geometry." + std::to_string(g);
     const std::string why = "in 2D (discs in the x-y plane) ";
-    if (const auto problem = walls::in_plane_problem(geometry))
+    if (const auto problem = walls::in_plane_problem(geometry, 0.5 * (c.domain.lo.z + c.domain.hi.z)))
       fail(c, key + "." + problem->key, why + problem->reason);
     if (geometry.motion.velocity.z != 0.0) fail(c, key + ".motion.velocity", why + "the z component must be 0");
     if (geometry.motion.angular_velocity.x != 0.0 || geometry.motion.angular_velocity.y != 0.0)

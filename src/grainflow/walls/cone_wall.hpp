@@ -17,7 +17,7 @@ struct ConeWall {
   static constexpr std::string_view meaning = "a cone or frustum about any axis (hoppers, funnels), particles inside";
   static void read(TomlReader& table, GeometryKeys& out);
   static ConeWall from_keys(const GeometryKeys& keys);
-  static std::optional<KeyProblem> in_plane_problem(const GeometryKeys&) {
+  static std::optional<KeyProblem> in_plane_problem(const GeometryKeys&, double /*plane_z*/) {
     return KeyProblem{"type", "a cone would push discs off their plane"};
   }
 

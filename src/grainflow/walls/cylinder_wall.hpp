@@ -17,7 +17,7 @@ struct CylinderWall {
   static constexpr std::string_view meaning = "a circular cylinder about any axis, particles inside or outside";
   static void read(TomlReader& table, GeometryKeys& out);
   static CylinderWall from_keys(const GeometryKeys& keys);
-  static std::optional<KeyProblem> in_plane_problem(const GeometryKeys& keys) {
+  static std::optional<KeyProblem> in_plane_problem(const GeometryKeys& keys, double /*plane_z*/) {
     const Vec3 axis = keys.vector("axis");
     if (axis.x != 0.0 || axis.y != 0.0) return KeyProblem{"axis", "a cylinder's axis is along z (a circle)"};
     return std::nullopt;

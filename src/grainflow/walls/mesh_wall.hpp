@@ -20,7 +20,7 @@ struct MeshWall {
   static constexpr std::string_view meaning = "a triangle mesh from an STL file (binary or ASCII)";
   static void read(TomlReader& table, GeometryKeys& out);
   static MeshWall from_keys(const GeometryKeys& keys);
-  static std::optional<KeyProblem> in_plane_problem(const GeometryKeys&) {
+  static std::optional<KeyProblem> in_plane_problem(const GeometryKeys&, double /*plane_z*/) {
     return KeyProblem{"type", "a mesh is a surface in 3D: discs (2D) take plane or cylinder walls"};
   }
 

@@ -14,6 +14,13 @@ void PlaneWall::read(TomlReader& r, GeometryKeys& out) {
   out.set_vector("normal", normal * (1.0 / norm(normal)));
   if (r.has("radius") && (r.has("width") || r.has("height")))
     r.fail("radius", "a plane is bounded to a disc (radius) or to a rectangle (width, height), not both");
+  if (r.has("hole_radius")) {
+    if (r.has("radius") || r.has("width") || r.has("height"))
+      r.fail("hole_radius", "a hole is cut in an unbounded plane (not with radius, width or height)");
+    const double hole = r.number("hole_radius", 0.0);
+    if (!(hole > 0.0)) r.fail("hole_radius", "must be positive");
+    out.set_number("hole_radius", hole);
+  }
   if (r.has("radius")) {
     const double radius = r.number("radius", 0.0);
     if (!(radius > 0.0)) r.fail("radius", "must be positive");
@@ -38,6 +45,7 @@ PlaneWall PlaneWall::from_keys(const GeometryKeys& k) {
   w.point = k.vector("point");
   w.normal = k.vector("normal");
   w.direction = perpendicular(w.normal);
+  if (k.has("hole_radius")) w.hole = k.number("hole_radius");
   if (k.has("radius")) {
     w.bound = Bound::disc;
     w.radius = k.number("radius");
@@ -69,9 +77,9 @@ bool PlaneWall::spins_in_place(const Vec3& w, const Vec3& origin) const {
   const bool about_normal = norm(cross(w * (1.0 / rate), normal)) < 1e-12;
   if (!about_normal) return false;
   if (bound == Bound::rectangle) return false;
-  if (bound == Bound::none) return true;
+  if (bound == Bound::none && hole == 0.0) return true;
   const Vec3 off = origin - point;  // a disc only about its own axis
-  return norm(off - dot(off, normal) * normal) < 1e-12 * (1.0 + radius);
+  return norm(off - dot(off, normal) * normal) < 1e-12 * (1.0 + radius + hole);  // a disc or hole only about its own axis
 }
 
 SurfaceMesh PlaneWall::mesh(const Vec3& lo, const Vec3& hi) const {
@@ -109,6 +117,22 @@ SurfaceMesh PlaneWall::mesh(const Vec3& lo, const Vec3& hi) const {
       }
   }
   if (cut.size() < 3) return m;
+  if (hole > 0.0) {  // an annulus from the hole's rim out to the cut's farthest corner
+    double outer = hole;
+    for (const Vec3& p : cut) outer = std::max(outer, norm(p - point));
+    constexpr int kSides = 48;
+    for (int k = 0; k < kSides; ++k) {
+      const double a = 2.0 * M_PI * k / kSides;
+      const Vec3 e = std::cos(a) * u + std::sin(a) * v;
+      m.points.push_back(point + hole * e);
+      m.points.push_back(point + outer * e);
+    }
+    for (int k = 0; k < kSides; ++k) {
+      const int next = (k + 1) % kSides;
+      m.quad(2 * k, 2 * k + 1, 2 * next + 1, 2 * next);
+    }
+    return m;
+  }
   Vec3 centre;
   for (const Vec3& p : cut) centre += p;
   centre *= 1.0 / static_cast<double>(cut.size());

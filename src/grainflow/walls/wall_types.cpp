@@ -26,11 +26,11 @@ WallShape shape_named(const std::string& type, const GeometryKeys& keys) {
 }
 
 template <std::size_t I = 0>
-std::optional<KeyProblem> in_plane_problem_of(const std::string& type, const GeometryKeys& keys) {
+std::optional<KeyProblem> in_plane_problem_of(const std::string& type, const GeometryKeys& keys, double plane_z) {
   if constexpr (I < std::variant_size_v<WallShape>) {
     using Type = std::variant_alternative_t<I, WallShape>;
-    if (type == Type::name) return Type::in_plane_problem(keys);
-    return in_plane_problem_of<I + 1>(type, keys);
+    if (type == Type::name) return Type::in_plane_problem(keys, plane_z);
+    return in_plane_problem_of<I + 1>(type, keys, plane_z);
   } else {
     throw std::logic_error("unknown wall type '" + type + "' (registered: " + wall_type_names() + ")");
   }
@@ -48,7 +48,9 @@ std::string wall_type_names() {
 
 WallShape make_wall_shape(const GeometryConfig& g) { return shape_named(g.type, g.keys); }
 
-std::optional<KeyProblem> in_plane_problem(const GeometryConfig& g) { return in_plane_problem_of(g.type, g.keys); }
+std::optional<KeyProblem> in_plane_problem(const GeometryConfig& g, double plane_z) {
+  return in_plane_problem_of(g.type, g.keys, plane_z);
+}
 
 double nearest_gap(const WallShape& shape, const Vec3& x, double reach) {
   return std::visit(

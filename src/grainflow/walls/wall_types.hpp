@@ -24,8 +24,8 @@ GeometrySchemas geometry_schemas();
 std::string wall_type_names();
 // The shape a [[geometry]] table describes (its type checked by the loader), at t = 0.
 WallShape make_wall_shape(const GeometryConfig& g);
-// The key of `g` that would push discs (2D) off their plane, and why; or none.
-std::optional<KeyProblem> in_plane_problem(const GeometryConfig& g);
+// The key of `g` that would push discs (2D, in the plane z = plane_z) off their plane, and why; or none.
+std::optional<KeyProblem> in_plane_problem(const GeometryConfig& g, double plane_z);
 // The smallest gap between x and the wall's surface (negative behind a one-sided wall); a mesh,
 // two-sided, looks no farther than `reach` and answers `reach` when nothing is nearer.
 double nearest_gap(const WallShape& shape, const Vec3& x, double reach);
