@@ -32,7 +32,7 @@ TEST(ObserverRegistry, SoftSphereRunGetsTheTablesItsCaseEnables) {
             (std::vector<std::string>{"field", "tracers", "stresses", "coarse_grain", "profiles"}));
   EXPECT_EQ(run::observer_names(run::EngineKind::dem),
             (std::vector<std::string>{"trajectory", "zone_series", "field", "tracers", "stresses", "coarse_grain",
-                                      "geometry", "profiles"}));
+                                      "geometry", "discharge", "profiles"}));
 }
 
 TEST(ObserverRegistry, EventDrivenConstitutiveTableBuildsOnTheProfilesAndStresses) {

@@ -149,10 +149,31 @@ struct GeometryMotionConfig {
 struct GeometryConfig {
   bool operator==(const GeometryConfig&) const = default;  // the case writer's round-trip test
   std::string name;  // unique; names its rows in geometry.csv and its snapshot files
-  std::string type;  // plane | cylinder | cone
+  std::string type;  // a registered wall type (walls/wall_types.hpp)
   GeometryKeys keys;       // the type's own keys
   WallConfig material;     // friction, rolling_friction and the contact law's wall keys, as [walls.FACE]
   GeometryMotionConfig motion;
+};
+
+// An [[insertion]]: particles of one species put into a region, non-overlapping with what is there.
+struct InsertionConfig {
+  bool operator==(const InsertionConfig&) const = default;  // the case writer's round-trip test
+  std::string name;
+  std::string species;
+  long count = 0;      // a total (0: by rate)
+  double rate = 0.0;   // particles per second (0: by count)
+  Vec3 region_lo, region_hi;  // m, a box
+  std::string inside;  // or the inside of a [[geometry]] of this name (its box, clear of its surface)
+  Vec3 velocity;       // m/s
+  double start = 0.0;  // s
+};
+
+// An [[outlet]]: particles whose centre enters its box are removed and counted (discharge.csv).
+struct OutletConfig {
+  bool operator==(const OutletConfig&) const = default;  // the case writer's round-trip test
+  std::string name;
+  Vec3 region_lo, region_hi;  // m
+  std::string reinsert;       // an [[insertion]]'s name: each removed particle goes back through it
 };
 
 struct DriveConfig {
@@ -274,6 +295,8 @@ struct CaseConfig {
   double lees_edwards_rate = 0.0;  // 1/s, [lees_edwards] shear_rate: unbounded simple shear (flow x, gradient y)
   std::array<WallConfig, 6> walls;
   std::vector<GeometryConfig> geometry;  // [[geometry]] walls, in the order given
+  std::vector<InsertionConfig> insertions;  // [[insertion]]
+  std::vector<OutletConfig> outlets;        // [[outlet]]
   DriveConfig drive;
   RunConfig run;
   OutputConfig output;

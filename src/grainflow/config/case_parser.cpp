@@ -17,6 +17,7 @@
 #include "grainflow/config/toml_reader.hpp"
 #include "grainflow/config/particle_csv.hpp"
 #include "grainflow/config/sampler_tables.hpp"
+#include "grainflow/config/flow_tables.hpp"
 #include "grainflow/config/wall_tables.hpp"
 
 namespace grainflow {
@@ -437,6 +438,8 @@ CaseConfig parse(const toml::table& root, const std::string& file, const std::se
   read_collision(top, c);
   read_walls(top, c, schemas);
   read_geometry(top, c, schemas, geometry_schemas);
+  read_insertions(top, c);
+  read_outlets(top, c);
   read_servo(top, c);
   read_lees_edwards(top, c);
   if (top.has("drive") && c.engine.kind == "edmd")

@@ -159,6 +159,31 @@ void write_walls(Out& o, const CaseConfig& c) {
   }
 }
 
+void write_flows(Out& o, const CaseConfig& c) {
+  for (const InsertionConfig& in : c.insertions) {
+    o.text << "\n[[insertion]]\n";
+    o.text_key("name", in.name);
+    o.text_key("species", in.species);
+    if (in.rate > 0.0) o.key("rate", in.rate);
+    else o.key("count", static_cast<long long>(in.count));
+    if (!in.inside.empty()) {
+      o.text_key("inside", in.inside);
+    } else {
+      o.key("region_lo", vec(in.region_lo));
+      o.key("region_hi", vec(in.region_hi));
+    }
+    o.key("velocity", vec(in.velocity));
+    o.key("start", in.start);
+  }
+  for (const OutletConfig& out : c.outlets) {
+    o.text << "\n[[outlet]]\n";
+    o.text_key("name", out.name);
+    o.key("region_lo", vec(out.region_lo));
+    o.key("region_hi", vec(out.region_hi));
+    if (!out.reinsert.empty()) o.text_key("reinsert", out.reinsert);
+  }
+}
+
 void write_geometry(Out& o, const CaseConfig& c) {
   for (const GeometryConfig& g : c.geometry) {
     o.text << "\n[[geometry]]\n";
@@ -326,6 +351,7 @@ std::string write_case_toml(const CaseConfig& c) {
   if (c.engine.kind == "edmd") write_collision(o, c.collision);
   write_walls(o, c);
   write_geometry(o, c);
+  write_flows(o, c);
   write_optional_tables(o, c);
   write_run(o, c);
   write_output(o, c);

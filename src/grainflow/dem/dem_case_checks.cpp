@@ -14,6 +14,7 @@
 #include "grainflow/dem/contact_law_registry.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/walls/wall_types.hpp"
+#include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
 
 namespace grainflow::dem {
@@ -317,7 +318,8 @@ DerivedQuantities validate_dem_case(const CaseConfig& c) {
   if (c.particles.initial_profile == "couette" && (!holds_wall(c.domain.faces[2]) || !holds_wall(c.domain.faces[3])))
     fail(c, "particles.initial_profile", "the couette profile needs walls at ylo and yhi");
 
-  if (d.moving_particles + d.frozen_particles == 0) fail(c, "species.count", "no particles to simulate");
+  if (d.moving_particles + d.frozen_particles == 0 && c.insertions.empty())
+    fail(c, "species.count", "no particles to simulate (and no [[insertion]] to put any in)");
   if (d.law_problem) fail(c, "contact." + d.law_problem->key, d.law_problem->reason);
   if (d.steps_per_contact < kMinStepsPerContact) {
     const double suggested = d.contact_duration / kMinStepsPerContact;
@@ -349,6 +351,62 @@ DerivedQuantities validate_dem_case(const CaseConfig& c) {
   validate_coarse_grain(c, d);
   validate_trajectory(c, d);
   return d;
+}
+
+// Particles entering and leaving: an outlet some particle can reach; an insertion region inside the
+// box, not wholly inside a wall, and able to hold what its rate puts in before they fall out of it.
+void validate_flows(const CaseConfig& c, const DemState& s) {
+  if ((!c.insertions.empty() || !c.outlets.empty()) && (c.trajectory.enabled || c.tracers.enabled))
+    fail(c, c.trajectory.enabled ? "trajectory" : "tracers",
+         "follows a fixed set of particles: not yet with [[insertion]] or [[outlet]], which change it");
+  for (std::size_t o = 0; o < c.outlets.size(); ++o) {
+    const OutletConfig& out = c.outlets[o];
+    for (int a = 0; a < 3; ++a)
+      if (out.region_hi[a] < c.domain.lo[a] || out.region_lo[a] > c.domain.hi[a])
+        fail(c, "outlet." + std::to_string(o) + ".region_lo",
+             "the outlet '" + out.name + "' lies outside the box along " + "xyz"[a] + ": no particle can reach it");
+  }
+  for (std::size_t k = 0; k < c.insertions.size(); ++k) {
+    const InsertionConfig& in = c.insertions[k];
+    const InsertionRegion& region = s.insertions[k];
+    const std::string key = "insertion." + std::to_string(k);
+    if (region.inside >= 0 && std::holds_alternative<walls::MeshWall>(s.walls[region.inside].shape))
+      fail(c, key + ".inside", "a mesh has no inside: give region_lo and region_hi");
+    for (int a = 0; a < 3; ++a)
+      if (region.lo[a] < c.domain.lo[a] || region.hi[a] > c.domain.hi[a])
+        fail(c, key + ".region_lo", "the insertion '" + in.name + "' reaches outside the box along " + "xyz"[a]);
+    // Room: a point of a 9 x 9 x 9 grid over the region clear of every wall by a radius.
+    bool room = false;
+    for (int i = 0; i < 729 && !room; ++i) {
+      Vec3 x;
+      const int digits[3] = {i % 9, i / 9 % 9, i / 81};
+      for (int a = 0; a < 3; ++a) x[a] = region.lo[a] + (digits[a] + 0.5) / 9.0 * (region.hi[a] - region.lo[a]);
+      room = true;
+      for (const DemWall& wall : s.walls) room = room && walls::nearest_gap(wall.shape, x, region.radius) >= region.radius;
+    }
+    if (!room) fail(c, key + ".region_lo", "the insertion '" + in.name + "' lies inside a wall: no room anywhere in it");
+    if (in.rate > 0.0) {
+      // Random placement fills up to ~30 % of a region; a particle leaves it after falling through
+      // its extent along gravity, from the insertion's velocity.
+      const double g = norm(c.gravity);
+      double volume = 1.0;
+      for (int a = 0; a < s.dimension; ++a) volume *= region.hi[a] - region.lo[a];
+      const double capacity = 0.3 * volume / ball_measure(s.dimension, region.radius);
+      double height = 0.0, speed = 0.0;
+      if (g > 0.0) {
+        const Vec3 down = c.gravity * (1.0 / g);
+        for (int a = 0; a < 3; ++a) height += std::fabs(down[a]) * (region.hi[a] - region.lo[a]);
+        speed = std::max(0.0, dot(in.velocity, down));
+      }
+      const double leave = g > 0.0 ? (std::sqrt(speed * speed + 2.0 * g * height) - speed) / g
+                                   : height / std::max(norm(in.velocity), 1e-300);
+      if (in.rate * leave > capacity)
+        fail(c, key + ".rate",
+             "the insertion '" + in.name + "' can hold about " + fmt_number(capacity) + " particles, which fall out of it in " +
+                 fmt_number(leave) + " s: at most " + fmt_number(capacity / leave) + " per second, not " +
+                 fmt_number(in.rate));
+    }
+  }
 }
 
 }  // namespace grainflow::dem

@@ -9,4 +9,9 @@ namespace grainflow::dem {
 // Returns what it derived from the case, for the checks that follow (the observers' tables).
 DerivedQuantities validate_dem_case(const CaseConfig& c);
 
+struct DemState;
+// [[insertion]] and [[outlet]] against the built state (its walls and insertion regions): an
+// outlet a particle can reach, an insertion region in the box, with room, able to hold its rate.
+void validate_flows(const CaseConfig& c, const DemState& s);
+
 }  // namespace grainflow::dem

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <type_traits>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -117,6 +118,22 @@ class DemEngine {
   const NeighborPairs& pairs() const { return pairs_; }
   const DemCouetteServo& servo() const { return servo_; }
   ContactStatistics& statistics() { return stats_; }
+
+  // Particles entering and leaving (silos, hoppers): what left through each outlet so far (this
+  // rank's particles), the particles removed since the last take (their outlet and their state as
+  // they left), and how many each insertion has put in.
+  struct OutletCount {
+    long removed = 0;
+    double mass = 0.0;  // kg (kg/m for discs)
+  };
+  struct Removed {
+    int outlet = 0;
+    ParticleStore::Record particle;
+  };
+  const std::vector<OutletCount>& outlet_counts() const { return outlet_counts_; }
+  std::vector<Removed> take_removed() { return std::exchange(removed_, {}); }
+  // Particles made by an insertion or back from an outlet, still waiting for room.
+  std::size_t waiting_count() const { return waiting_.size(); }
   // The MPI side of the engine, or null on one rank.
   const DomainExchange<State>* domain() const { return domain_.get(); }
   // MPI: the ghosts take their owners' state at the step's end (the step refreshes them after the
@@ -138,6 +155,7 @@ class DemEngine {
     ar(pairs_, contacts_, position_at_build_, rebuilds_since_sort_, stats_, energy_, wall_build_, wall_force_,
        wall_torque_);
     if (s_.box.sheared()) ar(s_.box.shear_offset, s_.box.shear_turns, offset_at_build_);
+    if (s_.exchanges) ar(outlet_counts_, waiting_, made_, draws_, next_id_, last_exchange_);
     if (servo_.enabled()) {
       for (auto& wall : s_.walls) wall.motion.serialize(ar);
       servo_.serialize(ar);
@@ -435,6 +453,34 @@ class DemEngine {
     double time = 0.0;
   };
   std::vector<WallBuild> wall_build_;
+  // Particles entering and leaving: applied at a rebuild (exchange_particles), whose list then
+  // holds the new set.
+  // Every kExchangeSteps steps at most (an O(N) pass): new particles are made when an insertion is
+  // due, and those waiting placed where there is room.
+  static constexpr long kExchangeSteps = 20;
+  struct Waiting {
+    int insertion = 0;
+    ParticleStore::Record particle;
+  };
+  std::vector<OutletCount> outlet_counts_;
+  std::vector<Removed> removed_;
+  std::vector<Waiting> waiting_;   // made (or back from an outlet), not yet placed
+  std::vector<long> made_;         // per insertion: particles made so far
+  std::uint64_t draws_ = 0;        // the insertions' random stream (splitmix64's counter)
+  std::uint32_t next_id_ = 0;      // no particle of the run has had it
+  long last_exchange_ = -kExchangeSteps;
+  long due(std::size_t insertion) const;
+  bool exchange_due() const;
+  void exchange_particles();
+  void place_waiting();
+  double uniform();
+  // -m g.x along the periodic axes (x unwrapped): a particle's share of periodic_potential.
+  double periodic_potential_of(double mass, const Vec3& x) const {
+    double u = 0.0;
+    for (int a = 0; a < 3; ++a)
+      if (s_.box.periodic[a]) u -= mass * s_.gravity[a] * x[a];
+    return u;
+  }
   DemCouetteServo servo_;
   std::array<int, 6> bump_wall_{};                 // wall carrying each face's bumps, -1 when they stand still
   std::array<int, 6> bump_owner_{};                // the bumpy wall of each face, -1 where there is none

@@ -12,6 +12,7 @@
 
 #include "grainflow/dem/dem_engine.hpp"
 #include "grainflow/dem/dem_engine_portable_impl.hpp"
+#include "grainflow/dem/dem_engine_flows_impl.hpp"
 #include "grainflow/dem/dem_engine_walls_impl.hpp"
 #include "grainflow/dem/thread_slices.hpp"
 
@@ -32,6 +33,9 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
   }
   s_.particles.ghost.assign(s_.particles.size(), 0);
   contacts_.walls.assign(s_.walls.size(), {});
+  outlet_counts_.assign(s_.outlets.size(), {});
+  made_.assign(s_.insertions.size(), 0);
+  for (std::uint32_t id : s_.particles.id) next_id_ = std::max(next_id_, id + 1);
   wall_build_.assign(s_.walls.size(), {});
   // A still surface's list holds while the particles move half a skin (the neighbour list's
   // rebuild); a moving one's is rebuilt when the surface has moved half a skin, by which time a
@@ -114,7 +118,7 @@ void DemEngine<Law, Rolling>::step() {
   energy_.growth_work += dt * energy_.growth_power;  // this step's growth against the forces before it
   grow_radii();
   if (domain_) domain_->refresh(p);  // ghosts take their owners' new positions and velocities
-  if (domain_ ? domain_->any(needs_rebuild()) : needs_rebuild()) rebuild(false);
+  if (domain_ ? domain_->any(needs_rebuild()) : needs_rebuild() || exchange_due()) rebuild(false);
   else refresh_moved_walls();
   const double contact_before = energy_.contact_power, wall_before = energy_.wall_power,
                seam_before = energy_.seam_power;
@@ -336,6 +340,7 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
   if (!first) {
     kept = contacts_.take_touching(pairs_, p.id, p.image, s_.box.shear_turns);
     kept_walls = contacts_.take_wall_touching(p.id);
+    if (s_.exchanges) exchange_particles();  // the kept states name particles by id: they follow
   }
   if (s_.box.sheared()) {
     // The offset back within one width (the turns go into the images' keys), and particles that

@@ -61,6 +61,27 @@ struct DemWall : FaceWall {
   }
 };
 
+// An outlet: a free particle whose centre lies in the box [lo, hi] leaves the run.
+struct OutletRegion {
+  Vec3 lo, hi;
+  bool holds(const Vec3& x) const {
+    return x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z;
+  }
+};
+
+// An insertion: particles of one species put, clear of everything, into the box [lo, hi] (and,
+// when `inside` >= 0, inside that wall: clear of its surface on its particles' side): `count` at
+// `start`, or `rate` per second from `start` on.
+struct InsertionRegion {
+  int species = 0;
+  double radius = 0.0, mass = 0.0, inv_inertia = 0.0;
+  long count = 0;
+  double rate = 0.0;
+  Vec3 lo, hi, velocity;
+  int inside = -1;  // index into DemState::walls
+  double start = 0.0;
+};
+
 struct DemState {
   // 2: discs in the x-y plane at the box's mid-z, masses per unit thickness. Nothing then moves them
   // off it: every contact normal, tangential force and gravity lies in the plane and every torque
@@ -79,6 +100,10 @@ struct DemState {
   std::array<Vec3, 6> bump_displacement{};  // m, displacement applied so far to each face's bumps
   double expansion_rate = 0.0;              // m/s of radius growth (section 2.2), 0 when done
   std::vector<SpeciesConfig> species;
+  std::vector<OutletRegion> outlets;  // [[outlet]], in the case's order
+  std::vector<int> reinsert;          // per outlet: the insertion its particles go back through, or -1
+  std::vector<InsertionRegion> insertions;  // [[insertion]], in the case's order
+  bool exchanges = false;             // particles may enter or leave ([[insertion]], [[outlet]])
   CouetteServoRule servo;  // pressure-controlled walls at ylo and yhi, when servo.config.enabled
 };
 

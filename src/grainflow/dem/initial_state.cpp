@@ -10,6 +10,7 @@
 #include "grainflow/config/initial_flow.hpp"
 #include "grainflow/config/species_sequence.hpp"
 #include "grainflow/dem/bump_lattice.hpp"
+#include "grainflow/dem/dem_case_checks.hpp"
 #include "grainflow/dem/dem_state.hpp"
 #include "grainflow/dem/derived_quantities.hpp"
 #include "grainflow/dem/neighbor_list.hpp"
@@ -337,6 +338,38 @@ DemState build_dem_state(const CaseConfig& c) {
   if (s.dimension == 2) confine_to_plane(c, s);
   for (std::size_t i = 0; i < s.particles.size(); ++i)
     s.box.wrap(s.particles.position[i], s.particles.image[i], &s.particles.velocity[i]);
+  for (const InsertionConfig& in : c.insertions) {
+    InsertionRegion r;
+    for (std::size_t k = 0; k < c.species.size(); ++k)
+      if (c.species[k].name == in.species) r.species = static_cast<int>(k);
+    const SpeciesConfig& species = c.species[r.species];
+    r.radius = 0.5 * species.diameter;
+    r.mass = ball_measure(s.dimension, r.radius) * species.density;
+    r.inv_inertia = 1.0 / (ball_inertia_factor(s.dimension) * r.mass * r.radius * r.radius);
+    r.count = in.count;
+    r.rate = in.rate;
+    r.lo = in.region_lo;
+    r.hi = in.region_hi;
+    if (!in.inside.empty()) {
+      r.lo = c.domain.lo;
+      r.hi = c.domain.hi;
+      for (std::size_t w = 0; w < s.walls.size(); ++w)
+        if (s.walls[w].face < 0 && s.walls[w].name == in.inside) r.inside = static_cast<int>(w);
+    }
+    if (s.dimension == 2) r.lo.z = r.hi.z = disc_plane(c);
+    r.velocity = in.velocity;
+    r.start = in.start;
+    s.insertions.push_back(r);
+  }
+  for (const OutletConfig& o : c.outlets) {
+    s.outlets.push_back({o.region_lo, o.region_hi});
+    int back = -1;
+    for (std::size_t k = 0; k < c.insertions.size(); ++k)
+      if (c.insertions[k].name == o.reinsert) back = static_cast<int>(k);
+    s.reinsert.push_back(back);
+  }
+  s.exchanges = !c.outlets.empty() || !c.insertions.empty();
+  validate_flows(c, s);
   return s;
 }
 

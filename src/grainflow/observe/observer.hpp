@@ -46,6 +46,12 @@ struct GeometryLoad {
   Vec3 torque;  // N m
 };
 
+// What has left through one [[outlet]] so far (cumulative; this rank's particles).
+struct OutletTally {
+  long removed = 0;
+  double mass = 0.0;  // kg (kg/m for discs)
+};
+
 struct Frame {
   int dimension = 3;
   double time = 0.0;                         // s
@@ -69,6 +75,8 @@ struct Frame {
   std::function<void(const ContactForceVisit&)> contact_forces;
   // Soft spheres: each [[geometry]] wall's load, in the case's order; unset without an engine.
   std::function<std::vector<GeometryLoad>()> geometry_loads;
+  // Soft spheres: each [[outlet]]'s tally, in the case's order; unset without an engine.
+  std::function<std::vector<OutletTally>()> outlet_counts;
 };
 
 // Where an observer writes at the end: files in `directory` (on rank 0 only: `writes`), keys of

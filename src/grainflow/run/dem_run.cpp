@@ -165,6 +165,9 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   // Refused before anything is written.
   if (ranks && c.lees_edwards_rate != 0.0)
     throw InputError(c.path, "lees_edwards", "runs on one MPI rank for now (threads are fine): run it without mpirun");
+  if (ranks && !c.insertions.empty())
+    throw InputError(c.path, "insertion",
+                     "runs on one MPI rank for now (threads are fine): every rank would place the same particles");
   fs::create_directories(options.output_directory);
   dir = options.output_directory;
   if (c.output.snapshot_interval > 0.0) snapshots.emplace(dir + "/snapshots");
@@ -210,6 +213,11 @@ void DemRun::bind_frame(E& e) {
   frame.coordination = [&e] { return e.coordination(); };
   frame.contact_forces = [&e](const observe::Frame::ContactForceVisit& visit) { e.for_each_contact_force(visit); };
   frame.geometry_loads = [&e] { return geometry_loads(e); };
+  frame.outlet_counts = [&e] {
+    std::vector<observe::OutletTally> tallies;
+    for (const auto& count : e.outlet_counts()) tallies.push_back({count.removed, count.mass});
+    return tallies;
+  };
 }
 
 template <class E>

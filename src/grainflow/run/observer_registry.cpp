@@ -7,6 +7,7 @@
 #include "grainflow/observe/constitutive_observer.hpp"
 #include "grainflow/observe/contact_stress_observer.hpp"
 #include "grainflow/observe/convection_observer.hpp"
+#include "grainflow/observe/discharge_observer.hpp"
 #include "grainflow/observe/geometry_observer.hpp"
 #include "grainflow/observe/state_trajectory_observer.hpp"
 #include "grainflow/observe/strip_profile_observer.hpp"
@@ -70,6 +71,10 @@ constexpr Registered kObservers[] = {
     {"geometry", EngineKind::dem, nullptr, [](const CaseConfig& c) { return !c.geometry.empty(); },
      [](const observe::RunContext& run, const observe::Frame&, const std::vector<Made>&) -> Made {
        return std::make_unique<observe::GeometryObserver>(run);
+     }},
+    {"discharge", EngineKind::dem, nullptr, [](const CaseConfig& c) { return !c.outlets.empty(); },
+     [](const observe::RunContext& run, const observe::Frame&, const std::vector<Made>&) -> Made {
+       return std::make_unique<observe::DischargeObserver>(run);
      }},
     {"profiles", EngineKind::dem, nullptr, [](const CaseConfig&) { return true; },
      [](const observe::RunContext& run, const observe::Frame&, const std::vector<Made>&) -> Made {
