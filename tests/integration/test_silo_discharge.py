@@ -13,6 +13,9 @@
   1992), widened by k's range (+-8 % on (D - k d)^2.5 at D = 6) and this short run's error
   (~10 %). A rate off by a factor (an orifice of the wrong size, particles removed twice) falls
   outside.
+- an orifice of 2.2 d clogs (an arch of a few grains, To et al. 2001): the run stops by itself
+  once no grain has left for run.clog_time (the default, 50 sqrt(d / g)), well before its end,
+  with summary.json's clogged = true, clogged_at and a warning, and exits 0 with its outputs.
 
 Usage: /usr/bin/python3 tests/integration/test_silo_discharge.py PATH_TO_grainflow  (from the repo root)
 """
@@ -71,6 +74,18 @@ def main():
         C = rate / (rho_b * (D - K) ** 2.5)
         print(f"bulk density {rho_b:.3f}, Beverloo C = {C:.3f} (k = {K})")
         check(0.45 <= C <= 0.85, f"Beverloo C = {C:.3f} outside [0.45, 0.85]")
+
+        out = os.path.join(tmp, "clog")
+        status, _, err = run(exe, "run", CASE, "-o", out, "--quiet", "--set", "run.duration=400",
+                             "--set", "species.0.count=1000", "--set", "particles.region_hi=[10,10,25]",
+                             "--set", "geometry.1.hole_radius=1.1", "--set", "output.snapshot_interval=0")
+        if check(status == 0, f"clogging silo: exited {status}: {err.strip()}"):
+            summary = json.load(open(os.path.join(out, "summary.json")))
+            last = float(read_csv(os.path.join(out, "timeseries.csv"))[-1]["time"])
+            check(summary.get("clogged") is True, f"clogging silo: clogged = {summary.get('clogged')}")
+            check(last < 300.0 and abs(summary.get("clogged_at", -1.0) - last) < 1e-9,
+                  f"clogging silo: ran to t = {last}, clogged_at {summary.get('clogged_at')}")
+            check(any("clogged" in w for w in summary.get("warnings", [])), "clogging silo: no warning")
     return finish("test_silo_discharge")
 
 

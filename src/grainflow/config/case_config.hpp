@@ -195,6 +195,7 @@ struct RunConfig {
   int collision_steps = 15;                           // n of eq. (2-5-4)
   double skin = -1.0;                                 // m, Verlet skin; < 0: 0.15 largest diameter
   double halt_overlap = 0.0;                          // stop when max overlap / d exceeds this (0 = never; seeds: 0.01)
+  double clog_time = -1.0;  // s: with [[outlet]]s, stop when none has let a particle out for this long (0 = never; < 0: 50 sqrt(d / g))
   int sort_every = 20;                                // neighbor rebuilds between spatial re-sorts (0 = never)
   long long collisions = 0;  // edmd: stop after this many particle collisions (0 = run the duration)
   // edmd: "continuous", or "campbell": Campbell's runs of at most `segment_collisions` collisions

@@ -363,7 +363,7 @@ void read_run(TomlReader& top, CaseConfig& c) {
   run.duration = run.collisions > 0 || segmented ? r.number("duration", 1e300) : r.required_number("duration");
   if (!(run.duration > 0.0)) r.fail("duration", "must be positive");
   if (c.engine.kind == "edmd")
-    for (const char* key : {"time_step", "collision_steps", "skin", "halt_overlap", "sort_every"})
+    for (const char* key : {"time_step", "collision_steps", "skin", "halt_overlap", "sort_every", "clog_time"})
       if (r.has(key)) r.fail(key, "is a soft-sphere (dem) setting; the event-driven engine has no time step");
   run.time_step = r.number("time_step", 0.0);
   if (run.time_step < 0.0) r.fail("time_step", "must not be negative (0 = from eq. 2-5-4)");
@@ -373,6 +373,8 @@ void read_run(TomlReader& top, CaseConfig& c) {
   if (r.has("skin") && !(run.skin > 0.0)) r.fail("skin", "must be positive");
   run.halt_overlap = r.number("halt_overlap", 0.0);
   if (run.halt_overlap < 0.0) r.fail("halt_overlap", "must not be negative");
+  run.clog_time = r.number("clog_time", -1.0);
+  if (r.has("clog_time") && run.clog_time < 0.0) r.fail("clog_time", "must not be negative (0 = never)");
   run.sort_every = static_cast<int>(r.integer("sort_every", run.sort_every));
   if (run.sort_every < 0) r.fail("sort_every", "must not be negative");
   r.reject_unknown_keys();

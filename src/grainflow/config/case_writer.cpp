@@ -254,6 +254,7 @@ void write_run(Out& o, const CaseConfig& c) {
   o.key("collision_steps", r.collision_steps);
   if (r.skin > 0.0) o.key("skin", r.skin);
   o.key("halt_overlap", r.halt_overlap);
+  if (r.clog_time >= 0.0) o.key("clog_time", r.clog_time);
   o.key("sort_every", r.sort_every);
 }
 
