@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Beverloo's law from a sweep of silo discharges: for each run of SWEEP_DIR, its orifice diameter D
 (twice the hole_radius of its holed plane), its steady discharge rate W with error (summary.json)
-and its bed's bulk density rho_b (the solids fraction of the particles whose centres lie in a
-cylinder about the silo's axis, away from the orifice and the free surface, times the particles'
-density); then the fit W = C rho_b sqrt(g) (D - k d)^(5/2) (3D; (D - k d)^(3/2) for discs), as the
+and its bed's bulk density rho_b (the bulk solids fraction summary.json gives for the outlet's
+bed box, else that of the particles whose centres lie in a cylinder about the silo's axis in the
+final state, away from the orifice and the free surface; times the particles' density); then the fit W = C rho_b sqrt(g) (D - k d)^(5/2) (3D; (D - k d)^(3/2) for discs), as the
 straight line W^(2/5) = a (D - k d) weighted by each rate's error. Writes silo_beverloo.csv and
 silo_beverloo.png in SWEEP_DIR and prints C and k with their errors beside the published ranges.
 
@@ -73,7 +73,13 @@ def main():
         dimension = case.get("engine", {}).get("dimension", 3)
         g = math.sqrt(sum(v * v for v in case.get("gravity", {}).get("vector", [0.0, -9.81, 0.0])))
         species = case["species"][0]
-        rho_b = bulk_fraction(run, args.bed_radius, *args.bed_z, dimension) * species["density"]
+        # The bulk solids fraction the run measured in its outlet's bed box over the discharge
+        # window, else one from the final state.
+        has_bed = any("bed_lo" in o for o in case.get("outlet", []))
+        fraction = summary.get("bulk_solids_fraction") if has_bed else None
+        if fraction is None:
+            fraction = bulk_fraction(run, args.bed_radius, *args.bed_z, dimension)
+        rho_b = fraction * species["density"]
         rows.append(dict(run=os.path.basename(run), D=D, d=species["diameter"], W=summary["discharge_rate"],
                          dW=max(summary["discharge_rate_error"], 1e-12), rho_b=rho_b, g=g, dimension=dimension))
     if len(rows) < 3:

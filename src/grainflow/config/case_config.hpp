@@ -174,6 +174,8 @@ struct OutletConfig {
   std::string name;
   Vec3 region_lo, region_hi;  // m
   std::string reinsert;       // an [[insertion]]'s name: each removed particle goes back through it
+  bool has_bed = false;       // bed_lo, bed_hi given: a box in the bed, away from the orifice,
+  Vec3 bed_lo, bed_hi;        // m, where the bulk solids fraction is measured
 };
 
 struct DriveConfig {

@@ -181,6 +181,10 @@ void write_flows(Out& o, const CaseConfig& c) {
     o.key("region_lo", vec(out.region_lo));
     o.key("region_hi", vec(out.region_hi));
     if (!out.reinsert.empty()) o.text_key("reinsert", out.reinsert);
+    if (out.has_bed) {
+      o.key("bed_lo", vec(out.bed_lo));
+      o.key("bed_hi", vec(out.bed_hi));
+    }
   }
 }
 

@@ -76,6 +76,13 @@ void read_outlets(TomlReader& top, CaseConfig& c) {
     out.name = read_name(r, c.outlets, "outlet in discharge.csv");
     read_box(r, out.region_lo, out.region_hi);
     out.reinsert = r.string("reinsert", "");
+    if (r.has("bed_lo") || r.has("bed_hi")) {
+      out.has_bed = true;
+      out.bed_lo = r.required_vec3("bed_lo");
+      out.bed_hi = r.required_vec3("bed_hi");
+      for (int a = 0; a < 3; ++a)
+        if (!(out.bed_lo[a] < out.bed_hi[a])) r.fail("bed_hi", "must exceed bed_lo on every axis");
+    }
     if (!out.reinsert.empty()) {
       bool found = false;
       for (const auto& in : c.insertions) found = found || in.name == out.reinsert;

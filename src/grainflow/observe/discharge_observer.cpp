@@ -3,6 +3,7 @@
 #include <cmath>
 #include <iomanip>
 
+#include "grainflow/core/ball_measure.hpp"
 #include "grainflow/io/atomic_file.hpp"
 #include "grainflow/io/json_writer.hpp"
 
@@ -47,7 +48,11 @@ DischargeRate steady_discharge_rate(const std::vector<double>& time, const std::
 
 DischargeObserver::DischargeObserver(const RunContext& run)
     : ranks_(run.ranks), schedule_(run.c->output.interval, run.time_step) {
-  for (const OutletConfig& o : run.c->outlets) names_.push_back(o.name);
+  for (const OutletConfig& o : run.c->outlets) {
+    names_.push_back(o.name);
+    if (o.has_bed && !has_bed_) has_bed_ = true, bed_lo_ = o.bed_lo, bed_hi_ = o.bed_hi;
+  }
+  dimension_ = run.c->engine.dimension;
 }
 
 void DischargeObserver::take(const Frame& now) {
@@ -59,7 +64,25 @@ void DischargeObserver::take(const Frame& now) {
       row[2 * o + 1] = counts[o].mass;
     }
   }
+  if (has_bed_ && now.particles) {  // the particles' volume with centres in the box, over its volume
+    const ParticleStore& p = *now.particles;
+    double solid = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (!p.counted(i)) continue;
+      const Vec3& x = p.position[i];
+      bool inside = true;
+      for (int a = 0; a < dimension_; ++a) inside = inside && x[a] >= bed_lo_[a] && x[a] <= bed_hi_[a];
+      if (inside) solid += ball_measure(dimension_, p.radius[i]);
+    }
+    row.push_back(solid);
+  }
   ranks_.sum(row.data(), row.size());
+  if (has_bed_) {
+    double volume = 1.0;
+    for (int a = 0; a < dimension_; ++a) volume *= bed_hi_[a] - bed_lo_[a];
+    bed_fraction_.push_back(row.back() / volume);
+    row.pop_back();
+  }
   values_.push_back(now.time);
   values_.insert(values_.end(), row.begin(), row.end());
 }
@@ -102,6 +125,17 @@ void DischargeObserver::write(const Frame& last, OutputSink& out) {
   if (!d.measured) {
     if (out.warnings) out.warnings->push_back("discharge_rate: too few samples or nothing discharged to measure a rate");
     return;
+  }
+  if (has_bed_) {  // over the rate's window: blocks of it give the error, as for the rate
+    double sum = 0.0, sum2 = 0.0;
+    int n = 0;
+    for (std::size_t k = 0; k < time.size() && k < bed_fraction_.size(); ++k)
+      if (time[k] >= d.start && time[k] <= d.end) sum += bed_fraction_[k], sum2 += bed_fraction_[k] * bed_fraction_[k], ++n;
+    if (n > 1) {
+      const double mean = sum / n;
+      out.summary->number("bulk_solids_fraction", mean);
+      out.summary->number("bulk_solids_fraction_std", std::sqrt(std::max(0.0, sum2 / n - mean * mean)));
+    }
   }
   out.summary->number("discharge_rate", d.rate);
   out.summary->number("discharge_rate_error", d.error);

@@ -1,6 +1,7 @@
 // discharge.csv of a run with [[outlet]]s: at each output time (output.interval) the particles and
 // the mass each outlet has removed so far, summed over MPI ranks; and in summary.json the steady
-// discharge rate (mass per time, all outlets) with its error, over a window it reports.
+// discharge rate (mass per time, all outlets) with its error, over a window it reports, and the
+// bulk solids fraction in the bed box an outlet names (Beverloo's C goes with that density).
 #pragma once
 
 #include <string>
@@ -33,7 +34,7 @@ class DischargeObserver final : public Observer {
   void sample(const Frame& now) override {
     if (schedule_.due(now.step)) take(now);
   }
-  void serialize(io::StateArchive& ar) override { ar(schedule_, values_); }
+  void serialize(io::StateArchive& ar) override { ar(schedule_, values_, bed_fraction_); }
   void flush(OutputSink& out) override { write_file(out); }
   void write(const Frame& last, OutputSink& out) override;
 
@@ -45,6 +46,11 @@ class DischargeObserver final : public Observer {
   Schedule schedule_;
   std::vector<std::string> names_;
   std::vector<double> values_;  // per sample: time, then per outlet removed and mass
+  // The first outlet's bed box (bed_lo, bed_hi), if given, and its solids fraction per sample.
+  bool has_bed_ = false;
+  Vec3 bed_lo_, bed_hi_;
+  int dimension_ = 3;
+  std::vector<double> bed_fraction_;
 };
 
 }  // namespace grainflow::observe

@@ -574,7 +574,7 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
   for (int a = 0; a < dim; ++a)
     put(summary, std::string("cell_temperature_") + "xyz"[a],
         series_mean(rows, from, [a, dim](const TimeseriesRow& r) { return r.global.component_temperature[a] / dim; }));
-  if (floor_below) {
+  if (floor_below && c.outlets.empty()) {  // a discharging silo's bulk fraction is its outlet's bed box's
     put(summary, "bed_height", series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.height; }));
     put(summary, "bulk_solids_fraction",
         series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.bulk_solids_fraction; }));
