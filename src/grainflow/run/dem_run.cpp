@@ -1,4 +1,5 @@
 #include "grainflow/run/dem_run.hpp"
+#include "grainflow/run/clog_watch.hpp"
 #include "grainflow/run/run_support.hpp"
 #include "grainflow/run/checkpointing.hpp"
 #include "grainflow/run/interrupt.hpp"
@@ -138,9 +139,7 @@ class DemRun {
   ParticleStore gathered;  // rank 0: all particles (final_state.csv, a checkpoint's datasets)
   int interrupted = 0;
   bool stopped_together = false;  // MPI: a failure every rank saw at the same output time
-  // [[outlet]]s: the particles out so far, when the last one left, and whether the orifice clogged.
-  double outflow = 0.0, last_outflow_time = 0.0, clog_time = 0.0;
-  std::optional<double> clogged_at;
+  ClogWatch clog;  // [[outlet]]s: whether the orifice clogged
 };
 
 DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
@@ -168,10 +167,7 @@ DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
   // Refused before anything is written.
   if (ranks && c.lees_edwards_rate != 0.0)
     throw InputError(c.path, "lees_edwards", "runs on one MPI rank for now (threads are fine): run it without mpirun");
-  if (!c.outlets.empty() && c.run.clog_time != 0.0) {
-    const double g = norm(c.gravity);
-    clog_time = c.run.clog_time > 0.0 ? c.run.clog_time : (g > 0.0 ? 50.0 * std::sqrt(derived.max_diameter / g) : 0.0);
-  }
+  clog = ClogWatch(c, derived.max_diameter);
   if (ranks && !c.insertions.empty())
     throw InputError(c.path, "insertion",
                      "runs on one MPI rank for now (threads are fine): every rank would place the same particles");
@@ -220,11 +216,7 @@ void DemRun::bind_frame(E& e) {
   frame.coordination = [&e] { return e.coordination(); };
   frame.contact_forces = [&e](const observe::Frame::ContactForceVisit& visit) { e.for_each_contact_force(visit); };
   frame.geometry_loads = [&e] { return geometry_loads(e); };
-  frame.outlet_counts = [&e] {
-    std::vector<observe::OutletTally> tallies;
-    for (const auto& count : e.outlet_counts()) tallies.push_back({count.removed, count.mass});
-    return tallies;
-  };
+  frame.outlet_counts = [&e] { return outlet_tallies(e); };
 }
 
 template <class E>
@@ -342,12 +334,10 @@ void DemRun::record(E& e) {
   row.servo = e.servo().state();
   e.statistics().max_overlap_ratio = 0.0;
   rows.push_back(row);
-  if (clog_time > 0.0) {  // a clog: no particle out for clog_time (summed over the ranks)
+  if (clog.on()) {  // the particles out so far, over the ranks
     double out = 0.0;
-    for (const auto& count : e.outlet_counts()) out += static_cast<double>(count.removed);
-    if (ranks) out = comm.sum(out);
-    if (out > outflow) outflow = out, last_outflow_time = st.time;
-    else if (st.time - last_outflow_time >= clog_time) clogged_at = st.time;
+    for (const auto& tally : outlet_tallies(e)) out += static_cast<double>(tally.removed);
+    clog.update(ranks ? comm.sum(out) : out, st.time);
   }
   // Radius expansion (section 2.2) overlaps growing spheres on purpose: monitor only after it.
   // The settling before a drive starts is not monitored either: Lan's 1% criterion calibrates K1
@@ -402,7 +392,7 @@ void DemRun::step_loop(E& e) {
     for (auto& o : observers) o->sample(now);
     if (output_schedule.due(step)) {
       record(e);
-      if (clogged_at) break;
+      if (clog.clogged()) break;
       progress->update(e.state().time);
       // Every 30 s of wall time the files so far are written (decided together: tracers gather).
       const auto now = std::chrono::steady_clock::now();
@@ -544,14 +534,7 @@ void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& 
                  wall_seconds > 0 ? moving * double(st.step - first_step) / wall_seconds : 0.0);
   if (restart) summary.string("restarted_from", options.restart);
   summary.number("max_overlap_over_diameter", max_overlap_seen);
-  if (clog_time > 0.0) {
-    summary.boolean("clogged", clogged_at.has_value());
-    if (clogged_at) {
-      summary.number("clogged_at", *clogged_at);
-      warnings.push_back("the outlets clogged: no particle left for " + std::to_string(clog_time) + " s up to t = " +
-                         std::to_string(*clogged_at) + " s; the run stopped there (run.clog_time)");
-    }
-  }
+  clog.report(summary, warnings);
   summary.number("kinetic_energy", global.kinetic_energy);
   summary.number("rotational_energy", global.rotational_energy);
   write_energy_budget(final_budget, final_budget_scale, summary);

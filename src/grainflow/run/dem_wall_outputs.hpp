@@ -22,6 +22,14 @@ std::vector<observe::GeometryLoad> geometry_loads(const E& e) {
   return loads;
 }
 
+// What each [[outlet]] has removed so far (this rank's particles), in case order.
+template <class E>
+std::vector<observe::OutletTally> outlet_tallies(const E& e) {
+  std::vector<observe::OutletTally> tallies;
+  for (const auto& count : e.outlet_counts()) tallies.push_back({count.removed, count.mass});
+  return tallies;
+}
+
 // A wall whose surface moves (it turns off its own axis or translates) is drawn at every snapshot;
 // one that stands still or spins in place once.
 class WallSnapshots {
