@@ -16,6 +16,7 @@
   1992), widened by k's range (+-8 % on (D - k d)^2.5 at D = 6) and this short run's error
   (~10 %). A rate off by a factor (an orifice of the wrong size, particles removed twice) falls
   outside.
+- `grainflow plot` draws discharge.png;
 - an orifice of 2.2 d clogs (an arch of a few grains, To et al. 2001): the run stops by itself
   once no grain has left for run.clog_time (the default, 50 sqrt(d / g)), well before its end,
   with summary.json's clogged = true, clogged_at and a warning, and exits 0 with its outputs.
@@ -83,6 +84,10 @@ def main():
         C = rate / (rho_b * (D - K) ** 2.5)
         print(f"bulk density {rho_b:.3f}, Beverloo C = {C:.3f} (k = {K})")
         check(0.45 <= C <= 0.85, f"Beverloo C = {C:.3f} outside [0.45, 0.85]")
+        status, _, err = run(exe, "plot", out)
+        png = os.path.join(out, "discharge.png")
+        check(status == 0 and os.path.isfile(png) and open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n",
+              f"grainflow plot: no discharge.png ({status}: {err.strip()[-300:]})")
 
         out = os.path.join(tmp, "clog")
         status, _, err = run(exe, "run", CASE, "-o", out, "--quiet", "--set", "run.duration=400",

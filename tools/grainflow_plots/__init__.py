@@ -13,6 +13,7 @@ exist in the folder:
   tracers      tracer_height.png, tracer_spectrum.png, tracer_coordination.png  (Figs. A5.12-A5.17)
   snapshots    snapshots_phases.png                       (Figs. A4.10, A5.10)
   sweep        sweep_*.png of a `grainflow sweep` folder  (Figs. A4.4-A4.9, A4.11, A4.12, A4.23, A4.24)
+  silo         discharge.png of a run with [[outlet]]s; silo_beverloo.png of a sweep over orifices
 
 and of an event-driven run, after Campbell (1982) Chapter 3:
 
@@ -29,20 +30,20 @@ and plot_folder returns the problems, each naming its file.
 
 import os
 
-from . import (animation, constitutive, convection, diffusion, distributions, profiles, snapshots, stresses, strips, sweep,
-               timeseries, tracers, zone_waves)
+from . import (animation, constitutive, convection, diffusion, distributions, profiles, silo, snapshots, stresses, strips,
+               sweep, timeseries, tracers, zone_waves)
 from .common import PlotError, RunInfo, existing, read_json
 
 PLOTTERS = [profiles.plot, timeseries.plot, diffusion.plot, zone_waves.plot, convection.plot_mean,
             convection.plot_phase_bins, tracers.plot, snapshots.plot, sweep.plot, strips.plot, stresses.plot,
-            distributions.plot, constitutive.plot, animation.plot]
+            distributions.plot, constitutive.plot, silo.plot, animation.plot]
 
 # What makes a folder plottable at all (for the message when nothing is there).
 INPUTS = ["profiles.csv", "timeseries.csv", "analysis/vacf.csv", "analysis/msd.csv",
           "analysis/zone_spectra.csv", "analysis/floor_correlation.csv", "convection.csv",
           "convection_phases.csv", "tracers.csv", "snapshots/", "sweep.csv", "stresses.csv",
           "collision_angles.csv", "analysis/velocity_distributions.csv", "analysis/pair_distributions.csv", "constitutive.csv",
-          "constitutive_table.csv"]
+          "constitutive_table.csv", "discharge.csv"]
 
 
 def plot_folder(outdir):
