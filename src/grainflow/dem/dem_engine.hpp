@@ -120,8 +120,8 @@ class DemEngine {
   ContactStatistics& statistics() { return stats_; }
 
   // Particles entering and leaving (silos, hoppers): what left through each outlet so far (this
-  // rank's particles), the particles removed since the last take (their outlet and their state as
-  // they left), and how many each insertion has put in.
+  // rank's particles), and the particles the last exchange removed (their outlet and their state as
+  // they left; only the last exchange's, so that a long discharge keeps no record of every grain).
   struct OutletCount {
     long removed = 0;
     double mass = 0.0;  // kg (kg/m for discs)
@@ -131,7 +131,7 @@ class DemEngine {
     ParticleStore::Record particle;
   };
   const std::vector<OutletCount>& outlet_counts() const { return outlet_counts_; }
-  std::vector<Removed> take_removed() { return std::exchange(removed_, {}); }
+  std::vector<Removed> take_removed() { return std::exchange(removed_, {}); }  // empty until the next exchange
   // Particles made by an insertion or back from an outlet, still waiting for room.
   std::size_t waiting_count() const { return waiting_.size(); }
   // The MPI side of the engine, or null on one rank.

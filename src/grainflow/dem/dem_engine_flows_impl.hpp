@@ -49,6 +49,7 @@ template <class Law, bool Rolling>
 void DemEngine<Law, Rolling>::exchange_particles() {
   ParticleStore& p = s_.particles;
   last_exchange_ = s_.step;
+  removed_.clear();
   if (!s_.outlets.empty()) {
     std::vector<std::uint32_t> keep;
     keep.reserve(p.size());

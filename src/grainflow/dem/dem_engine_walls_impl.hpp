@@ -113,8 +113,8 @@ void DemEngine<Law, Rolling>::wall_forces(double dt) {
 template <class Law, bool Rolling>
 template <bool Spins>
 inline void DemEngine<Law, Rolling>::wall_contact_force(const DemWall& wall, std::size_t w, const Params& params,
-                                                        std::uint32_t i, const walls::SurfaceContact& sc,
-                                                        State& state, double dt, ForceLoopSums& local) {
+                                                        std::uint32_t i, const walls::SurfaceContact& sc, State& state,
+                                                        double dt, ForceLoopSums& local) {
   ParticleStore& p = s_.particles;
   const double ri = p.radius[i];
   const double growth_rate = s_.expansion_rate;  // read before the stores below, which might alias it
@@ -143,39 +143,41 @@ inline void DemEngine<Law, Rolling>::wall_contact_force(const DemWall& wall, std
 template <class Law, bool Rolling>
 template <bool Spins, class Shape>
 ForceLoopSums DemEngine<Law, Rolling>::wall_forces_on(std::size_t w, const Shape& shape, double dt) {
-  if constexpr (std::is_same_v<Shape, walls::MeshWall>) return mesh_forces_on<Spins>(w, shape, dt);
-  const ParticleStore& p = s_.particles;
-  const DemWall& wall = s_.walls[w];
-  const Params& params = wall_params_[w];
-  auto& list = contacts_.walls[w];
-  ForceLoopSums wall_sums;
-  // Element by element: a particle appears once in an element's list, so the threads' slices of it
-  // never write to the same particle.
-  for (std::size_t e = 0; e < list.elements(); ++e) {
-    const std::uint32_t first = list.offsets[e];
-    const int element = static_cast<int>(e);
-    wall_sums += reduce_slices(
-        threads_, list.offsets[e + 1] - first, ForceLoopSums{},
-        [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
-          ForceLoopSums local;  // in registers, stored once at the slice's end
-          for (std::size_t k = first + begin; k < first + end; ++k) {
-            const std::uint32_t i = list.particle[k];
-            const walls::SurfaceContact sc = shape.contact(element, p.position[i]);
-            if (!wall_in_contact(sc.gap, p.radius[i], list.touching[k], params)) {
-              list.touching[k] = 0;
-              continue;
-            }
-            if (!list.touching[k]) {
-              list.touching[k] = 1;
-              list.state[k] = State{};
-              ++local.begun;
-            }
-            wall_contact_force<Spins>(wall, w, params, i, sc, list.state[k], dt, local);
-          }
-          sum = local;
-        });
+  if constexpr (std::is_same_v<Shape, walls::MeshWall>) {
+    return mesh_forces_on<Spins>(w, shape, dt);
+  } else {
+    const ParticleStore& p = s_.particles;
+    const DemWall& wall = s_.walls[w];
+    const Params& params = wall_params_[w];
+    auto& list = contacts_.walls[w];
+    ForceLoopSums wall_sums;
+    // Element by element: a particle appears once in an element's list, so the threads' slices of it
+    // never write to the same particle.
+    for (std::size_t e = 0; e < list.elements(); ++e) {
+      const std::uint32_t first = list.offsets[e];
+      const int element = static_cast<int>(e);
+      wall_sums += reduce_slices(threads_, list.offsets[e + 1] - first, ForceLoopSums{},
+                                 [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
+                                   ForceLoopSums local;  // in registers, stored once at the slice's end
+                                   for (std::size_t k = first + begin; k < first + end; ++k) {
+                                     const std::uint32_t i = list.particle[k];
+                                     const walls::SurfaceContact sc = shape.contact(element, p.position[i]);
+                                     if (!wall_in_contact(sc.gap, p.radius[i], list.touching[k], params)) {
+                                       list.touching[k] = 0;
+                                       continue;
+                                     }
+                                     if (!list.touching[k]) {
+                                       list.touching[k] = 1;
+                                       list.state[k] = State{};
+                                       ++local.begun;
+                                     }
+                                     wall_contact_force<Spins>(wall, w, params, i, sc, list.state[k], dt, local);
+                                   }
+                                   sum = local;
+                                 });
+    }
+    return wall_sums;
   }
-  return wall_sums;
 }
 
 template <class Law, bool Rolling>
@@ -192,58 +194,57 @@ ForceLoopSums DemEngine<Law, Rolling>::mesh_forces_on(std::size_t w, const walls
     for (std::uint32_t f : list.candidates) list.candidate_facets.push_back(mesh.surface->facets()[f]);
   }
   // Particle by particle (its slots together): each appears once in a slot's block.
-  return reduce_slices(
-      threads_, n, ForceLoopSums{}, [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
-        ForceLoopSums local;
-        for (std::size_t k = begin; k < end; ++k) {
-          const std::uint32_t i = list.particle[k];
-          std::array<walls::SurfaceContact, kSlots> found;
-          const std::uint32_t from = list.candidate_offsets[k];
-          const int count = mesh.contacts(p.position[i], p.radius[i] + s_.cohesion_reach,
-                                          list.candidate_facets.data() + from, list.candidate_offsets[k + 1] - from,
-                                          found.data());
-          // Each contact continues the touching slot whose last normal it follows most closely (a
-          // step turns a normal by far less than 60 degrees), or starts in a slot no contact continues.
-          std::array<int, kSlots> slot;
-          unsigned claimed = 0;
-          for (int c = 0; c < count; ++c) {
-            slot[c] = -1;
-            double best = 0.5;
-            for (int s = 0; s < kSlots; ++s) {
-              const std::size_t q = list.offsets[s] + k;
-              if (!list.touching[q] || (claimed >> s & 1u)) continue;
-              const double along = dot(found[c].normal, list.contact[q].normal);
-              if (along > best) best = along, slot[c] = s;
-            }
-            if (slot[c] >= 0) claimed |= 1u << slot[c];
-          }
-          for (int c = 0; c < count; ++c) {
-            if (slot[c] >= 0) continue;
-            int s = 0;
-            while (claimed >> s & 1u) ++s;
-            claimed |= 1u << s;
-            slot[c] = s;
-            list.touching[list.offsets[s] + k] = 0;  // a new contact: whatever the slot held has ended
-          }
-          for (int s = 0; s < kSlots; ++s)
-            if (!(claimed >> s & 1u)) list.touching[list.offsets[s] + k] = 0;
-          for (int c = 0; c < count; ++c) {
-            const std::size_t q = list.offsets[slot[c]] + k;
-            if (!wall_in_contact(found[c].gap, p.radius[i], list.touching[q], params)) {
-              list.touching[q] = 0;
-              continue;
-            }
-            if (!list.touching[q]) {
-              list.touching[q] = 1;
-              list.state[q] = State{};
-              ++local.begun;
-            }
-            list.contact[q] = found[c];
-            wall_contact_force<Spins>(wall, w, params, i, found[c], list.state[q], dt, local);
-          }
+  return reduce_slices(threads_, n, ForceLoopSums{}, [&](int, std::size_t begin, std::size_t end, ForceLoopSums& sum) {
+    ForceLoopSums local;
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t i = list.particle[k];
+      std::array<walls::SurfaceContact, kSlots> found;
+      const std::uint32_t from = list.candidate_offsets[k];
+      const int count =
+          mesh.contacts(p.position[i], p.radius[i] + s_.cohesion_reach, list.candidate_facets.data() + from,
+                        list.candidate_offsets[k + 1] - from, found.data());
+      // Each contact continues the touching slot whose last normal it follows most closely (a
+      // step turns a normal by far less than 60 degrees), or starts in a slot no contact continues.
+      std::array<int, kSlots> slot;
+      unsigned claimed = 0;
+      for (int c = 0; c < count; ++c) {
+        slot[c] = -1;
+        double best = 0.5;
+        for (int s = 0; s < kSlots; ++s) {
+          const std::size_t q = list.offsets[s] + k;
+          if (!list.touching[q] || (claimed >> s & 1u)) continue;
+          const double along = dot(found[c].normal, list.contact[q].normal);
+          if (along > best) best = along, slot[c] = s;
         }
-        sum = local;
-      });
+        if (slot[c] >= 0) claimed |= 1u << slot[c];
+      }
+      for (int c = 0; c < count; ++c) {
+        if (slot[c] >= 0) continue;
+        int s = 0;
+        while (claimed >> s & 1u) ++s;
+        claimed |= 1u << s;
+        slot[c] = s;
+        list.touching[list.offsets[s] + k] = 0;  // a new contact: whatever the slot held has ended
+      }
+      for (int s = 0; s < kSlots; ++s)
+        if (!(claimed >> s & 1u)) list.touching[list.offsets[s] + k] = 0;
+      for (int c = 0; c < count; ++c) {
+        const std::size_t q = list.offsets[slot[c]] + k;
+        if (!wall_in_contact(found[c].gap, p.radius[i], list.touching[q], params)) {
+          list.touching[q] = 0;
+          continue;
+        }
+        if (!list.touching[q]) {
+          list.touching[q] = 1;
+          list.state[q] = State{};
+          ++local.begun;
+        }
+        list.contact[q] = found[c];
+        wall_contact_force<Spins>(wall, w, params, i, found[c], list.state[q], dt, local);
+      }
+    }
+    sum = local;
+  });
 }
 
 }  // namespace grainflow::dem

@@ -116,9 +116,8 @@ FacetTouch MeshSurface::touch(const MeshFacet& t, const Vec3& x, bool skip_redun
   const double h = dot(ap, t.normal);
   const double tolerance = 1e-6 * t.bound;  // x's foot this near a flat edge or vertex is right under it
   const FacetTouch plane{h >= 0.0 ? SurfaceContact{h, t.normal} : SurfaceContact{-h, -t.normal},
-                         FacetTouch::Feature::face, f, f, false};
-  const FacetTouch passed_over{{std::numeric_limits<double>::infinity(), t.normal}, FacetTouch::Feature::face, f, f,
-                               true};
+                         FacetTouch::Feature::face, f, false};
+  const FacetTouch passed_over{{std::numeric_limits<double>::infinity(), t.normal}, FacetTouch::Feature::face, f, true};
   // A flat region's inner vertex or edge: the plane's contact right under x, else passed over
   // (decided from the foot's distance to it, `offset`, before any distance is computed).
   const auto vertex = [&](int k, const Vec3& p) {
@@ -126,7 +125,7 @@ FacetTouch MeshSurface::touch(const MeshFacet& t, const Vec3& x, bool skip_redun
       if (dot(p, p) - h * h <= tolerance * tolerance) return plane;
       if (skip_redundant) return passed_over;
     }
-    FacetTouch touched{vertex_contact(t.vertex[k], x, t.normal), FacetTouch::Feature::vertex, f, t.vertex[k], false};
+    FacetTouch touched{vertex_contact(t.vertex[k], x, t.normal), FacetTouch::Feature::vertex, f, false};
     touched.redundant = t.flat_vertex[k] != 0;
     return touched;
   };
@@ -135,7 +134,7 @@ FacetTouch MeshSurface::touch(const MeshFacet& t, const Vec3& x, bool skip_redun
       if (-v <= tolerance * t.edge_scale[k]) return plane;
       if (skip_redundant) return passed_over;
     }
-    FacetTouch touched{edge_contact(t.edge[k], x, t.normal), FacetTouch::Feature::edge, f, t.edge[k], false};
+    FacetTouch touched{edge_contact(t.edge[k], x, t.normal), FacetTouch::Feature::edge, f, false};
     touched.redundant = t.flat_edge[k] != 0;
     return touched;
   };

@@ -36,14 +36,14 @@ namespace grainflow::walls {
 
 // One triangle, ready for contacts.
 struct MeshFacet {
-  Vec3 a, ab, ac;  // corner a and the edges to b and c
-  Vec3 normal;     // unit, (b - a) x (c - a): the front
-  Vec3 centre;     // of a sphere around the triangle: a quick test of reach
-  double bound = 0.0;                    // radius of that sphere
-  std::array<double, 3> edge_scale{};    // |(b - a) x (c - a)| times the length of edge ab, bc, ca
-  std::array<std::uint32_t, 3> vertex;   // welded corners a, b, c
-  std::array<std::uint32_t, 3> edge;     // edges ab, bc, ca: indices into MeshSurface::edges
-  std::uint32_t index = 0;               // its number in the surface
+  Vec3 a, ab, ac;                                          // corner a and the edges to b and c
+  Vec3 normal;                                             // unit, (b - a) x (c - a): the front
+  Vec3 centre;                                             // of a sphere around the triangle: a quick test of reach
+  double bound = 0.0;                                      // radius of that sphere
+  std::array<double, 3> edge_scale{};                      // |(b - a) x (c - a)| times the length of edge ab, bc, ca
+  std::array<std::uint32_t, 3> vertex;                     // welded corners a, b, c
+  std::array<std::uint32_t, 3> edge;                       // edges ab, bc, ca: indices into MeshSurface::edges
+  std::uint32_t index = 0;                                 // its number in the surface
   std::array<std::uint8_t, 3> flat_edge{}, flat_vertex{};  // inside a flat region (below)
 };
 
@@ -54,7 +54,6 @@ struct FacetTouch {
   SurfaceContact contact;
   Feature feature = Feature::face;
   std::uint32_t facet = 0;
-  std::uint32_t id = 0;  // the facet's, the edge's or the vertex's index
   // A flat region's inner edge or vertex, not right under the centre: never a contact of its own
   // (the face under the centre, or the region's rim, is nearer in the same patch).
   bool redundant = false;
@@ -93,8 +92,7 @@ class MeshSurface {
   // a step then streams through memory instead of jumping about the mesh), by the rule above:
   // those nearer than `within`, deepest first. Returns how many were written to `out` (at most
   // kMaxContacts).
-  int contacts(const Vec3& x, double within, const MeshFacet* candidates, std::size_t count,
-               SurfaceContact* out) const;
+  int contacts(const Vec3& x, double within, const MeshFacet* candidates, std::size_t count, SurfaceContact* out) const;
 
  private:
   SurfaceContact edge_contact(std::uint32_t e, const Vec3& x, const Vec3& fallback) const;
@@ -102,7 +100,7 @@ class MeshSurface {
   bool joined(const FacetTouch& a, const FacetTouch& b, const Vec3& x, double within) const;
 
   std::vector<Vec3> vertices_;
-  std::vector<std::array<std::uint32_t, 2>> edges_;  // the lower vertex index first
+  std::vector<std::array<std::uint32_t, 2>> edges_;    // the lower vertex index first
   std::vector<std::uint8_t> flat_edge_, flat_vertex_;  // inside a flat region: its triangles coplanar
   std::vector<MeshFacet> facets_;
   TriangleTree tree_;
