@@ -4,7 +4,7 @@ JOBS ?= $(shell nproc)
 PYTHON := /usr/bin/python3
 GRAINFLOW := build/release/grainflow
 
-.PHONY: all deps release debug demo test test-debug bench fuzz clean
+.PHONY: all deps release debug demo test test-debug bench fuzz clean python
 
 all: release
 
@@ -36,6 +36,13 @@ test: release
 	cmake --build --preset debug -j $(JOBS) --target unit_tests
 	ctest --preset release -j $(JOBS)
 	ctest --preset debug -L unit -E '^($(SANITIZER_LONG_RUNS))$$' -j $(JOBS)
+
+# The Python package, importable by /usr/bin/python3 from any folder afterwards: the release build
+# (which builds the module) and a grainflow.pth in the user's site-packages naming its folder.
+python: release
+	@site=$$($(PYTHON) -m site --user-site) && mkdir -p "$$site" && \
+	  echo "$(CURDIR)/build/release/python" > "$$site/grainflow.pth" && \
+	  echo "python: import grainflow works for $(PYTHON) (via $$site/grainflow.pth)"
 
 bench: release
 	./bench/run_bench.sh

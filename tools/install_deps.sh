@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages grainflow needs to build, test and plot; with `fuzz`, also clang
 # with libFuzzer and its OpenMP runtime (for `make fuzz`, not needed by `make test`). python3-vtk9: the
-# integration test that reads the snapshots with VTK's own readers (tests/integration/test_vtu_reader.py).
+# integration test that reads the snapshots with VTK's own readers (tests/integration/test_vtu_reader.py);
+# pybind11, pytest, nbconvert and ipykernel: the Python module and its tests (the example notebook).
 # Idempotent: installs only what is missing; runs apt-get update first on a fresh machine.
 # Usage: tools/install_deps.sh [fuzz]
 set -euo pipefail
@@ -13,6 +14,7 @@ packages=(
   libfftw3-dev libhdf5-dev hdf5-tools
   libopenmpi-dev openmpi-bin
   python3-matplotlib python3-numpy python3-h5py python3-pil python3-vtk9
+  python3-dev pybind11-dev python3-pytest jupyter-nbconvert python3-nbformat python3-ipykernel
 )
 if [ "${1:-}" = fuzz ]; then packages+=(clang libclang-rt-14-dev libomp-dev); fi
 

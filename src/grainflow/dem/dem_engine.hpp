@@ -178,6 +178,11 @@ class DemEngine {
   // One velocity-Verlet step: half kick, drift, walls, (rebuild), forces, half kick.
   void step();
 
+  // Before the first step, after positions or velocities were changed from outside (the Python
+  // module): the lists, forces and the energy budget's starting values anew, as the constructor
+  // made them.
+  void restart_from_current_state();
+
   // Forces and torques at the current positions; `history_dt` advances the contact histories.
   void compute_forces(double history_dt);
 

@@ -66,7 +66,14 @@ DemEngine<Law, Rolling>::DemEngine(DemState state, Params pair_params, std::vect
     rank_ = domain->comm->rank();
   }
   for (auto& wall : s_.walls) wall.move_to(s_.time);
+  restart_from_current_state();
+}
+
+template <class Law, bool Rolling>
+void DemEngine<Law, Rolling>::restart_from_current_state() {
+  const auto builds = stats_.rebuilds;  // a new start: its build is the first, as the constructor's was
   rebuild(true);
+  if (builds > 0) stats_.rebuilds = builds;
   // The initial evaluation must not advance contact histories (no time has passed): dt = 0.
   compute_forces(0.0);
   servo_ = DemCouetteServo(s_);

@@ -86,6 +86,19 @@ void EdmdEngine<Dim>::repredict_all() {
     queue_.update(static_cast<std::uint32_t>(i));
   }
 }
+template <int Dim>
+void EdmdEngine<Dim>::take_velocities() {
+  const ParticleStore& p = s_.particles;
+  double added = 0.0;  // J: the kinetic energy the new velocities bring
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    advance(static_cast<std::uint32_t>(i), s_.time);
+    added += 0.5 * p.mass[i] * (dot(p.velocity[i], p.velocity[i]) - dot(flight_[i].v, flight_[i].v));
+    flight_[i].v = p.velocity[i];
+  }
+  repredict_all();
+  counters_.start_energy += added;
+}
+
 template class EdmdEngine<2>;
 template class EdmdEngine<3>;
 template void EdmdEngine<2>::process_events<false>(double, long long);

@@ -125,6 +125,10 @@ class EdmdEngine {
   // Re-schedules every particle (after walls changed their motion).
   void repredict_all();
 
+  // Velocities written into the store from outside (every particle current): the flights take them,
+  // every event is predicted anew, the budget's start moves by the energy added (not work done).
+  void take_velocities();
+
  private:
   template <bool Limited>
   void process_events(double t_end, long long collision_limit);

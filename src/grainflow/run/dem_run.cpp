@@ -1,4 +1,6 @@
 #include "grainflow/run/dem_run.hpp"
+#include "grainflow/run/dem_run_stages.hpp"
+#include "grainflow/run/run_session_over.hpp"
 #include "grainflow/run/clog_watch.hpp"
 #include "grainflow/run/run_support.hpp"
 #include "grainflow/run/checkpointing.hpp"
@@ -51,96 +53,7 @@ observe::Frame frame_of(const dem::DemState& st) {
   return f;
 }
 
-// One DEM run: built from the case (observers, schedules, engine), then stepped, then written.
-// Each member function is one stage; the state they share is the members below.
-class DemRun {
- public:
-  DemRun(const CaseConfig& c, const RunOptions& options);
-  int run();
-
- private:
-  template <class E>
-  void transfer(io::StateArchive& ar, E& e);
-  template <class E>
-  void portable_run(io::StateArchive& ar, E& e);
-  template <class E>
-  void restore_portable_run(io::StateArchive& ar, E& e);
-  template <class E>
-  void checkpoint(E& e);
-  template <class E>
-  const ParticleStore& all_particles(E& e);
-  template <class E>
-  void record(E& e);
-  template <class E>
-  void start(E& e);
-  template <class E>
-  void step_loop(E& e);
-  void handle_failure_outside_loop();
-  template <class E>
-  void bind_frame(E& e);
-  template <class E>
-  const observe::Frame& frame_now(E& e);
-  template <class E>
-  void write_outputs(E& e);
-  template <class E>
-  std::pair<engine_api::EnergyBudget, double> global_energy_budget(const E& e) const;
-  template <class E>
-  void write_summary(E& e, long long moving, const observe::GlobalSample& global, long long migrations,
-                     long long ghosts);
-  void snapshot(const dem::DemState& st);
-
-  const CaseConfig& c;
-  const RunOptions& options;
-  const dem::DerivedQuantities derived;
-  // Under mpirun with several ranks each rank integrates one box of a grid (dem/domain_exchange.hpp);
-  // rank 0 writes every file.
-  const parallel::Communicator& comm = parallel::Communicator::world();
-  const bool ranks = comm.size() > 1;
-  const bool writes = comm.root();
-  // Every observer runs on each rank over the rank's own particles and sums over the ranks through
-  // this (the identity on one rank); particles are gathered on rank 0 only for final_state.csv.
-  const observe::RankReduce rank_reduce = over_ranks(comm);
-  long long particle_count = 0;
-  std::optional<io::Checkpoint> restart;
-  // A checkpoint of another rank count: its particles and clock go into the initial state (the
-  // sub-domains are placed on them), its contact memory into the engine once built.
-  std::optional<io::StateArchive> portable_restart;
-  dem::PortableParticles portable_particles;
-  std::string dir;
-  std::optional<io::PvdSeries> snapshots;
-  std::optional<WallSnapshots> wall_snapshots;  // [[geometry]] walls beside the particles
-  int axis = 1;
-  double area = 1.0;
-  observe::RunContext context;
-  // The case's observers (run/observer_registry.cpp), each offered every step, and the frame they
-  // see: pointers into the engine's state, the clock refreshed each step.
-  std::vector<std::unique_ptr<observe::Observer>> observers;
-  observe::Frame frame;
-  observe::OutputSink sink;
-  io::JsonObject summary;
-  std::optional<observe::ZoneProfile> zones_now;  // Lan's cell temperature of each time-series row
-  double dt = 0.0;
-  long total_steps = 0;
-  Schedule output_schedule, snapshot_schedule, checkpoint_schedule;
-  std::optional<dem::EngineDomain> domain;
-  std::unique_ptr<dem::DemEngineVariant> engine;  // built in place: an engine is not moved once built
-  observe::BedSurfaceThresholds bed_thresholds;
-  bool floor_below = false;  // bed height needs gravity toward the low face
-  std::vector<TimeseriesRow> rows;
-  std::vector<std::string> errors, warnings;
-  std::optional<Progress> progress;
-  std::chrono::steady_clock::time_point wall_start, last_flush;
-  double wall_seconds = 0.0;  // to the end of the loop, before the outputs are written
-  double max_overlap_seen = 0.0;
-  engine_api::EnergyBudget final_budget;  // at the end, over all ranks
-  double final_budget_scale = 0.0;        // J, the starting energy (the residual's fallback scale)
-  int exit_status = 0;
-  long first_step = 0;     // steps before this process's (a restart's checkpoint)
-  ParticleStore gathered;  // rank 0: all particles (final_state.csv, a checkpoint's datasets)
-  int interrupted = 0;
-  bool stopped_together = false;  // MPI: a failure every rank saw at the same output time
-  ClogWatch clog;  // [[outlet]]s: whether the orifice clogged
-};
+}  // namespace
 
 DemRun::DemRun(const CaseConfig& case_config, const RunOptions& run_options)
     : c(case_config),
@@ -377,8 +290,8 @@ void DemRun::start(E& e) {
 }
 
 template <class E>
-void DemRun::step_loop(E& e) {
-  for (long step = e.state().step + 1; step <= total_steps; ++step) {
+void DemRun::step_loop(E& e, long last) {
+  for (long step = e.state().step + 1; step <= last; ++step) {
     // Under MPI the ranks agree every 100 steps, so that all stop at the same step.
     if (!ranks) interrupted = pending_interrupt();
     else if (step % 100 == 0) interrupted = static_cast<int>(comm.max(pending_interrupt()));
@@ -405,8 +318,6 @@ void DemRun::step_loop(E& e) {
     if (snapshot_schedule.due(step)) snapshot(e.state());
     if (checkpoint_schedule.due(step) && step < total_steps) checkpoint(e);
   }
-  // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
-  if (interrupted != 0 || c.output.checkpoint_interval > 0.0) checkpoint(e);
 }
 
 // A fault seen on one rank inside a step cannot reach the others, which wait in the next exchange:
@@ -424,14 +335,10 @@ void DemRun::handle_failure_outside_loop() {
   }
 }
 
-int DemRun::run() {
+// A failure found in a stage becomes the run's error (summary.json, exit status 1).
+void DemRun::catch_failures(const std::function<void()>& stage) {
   try {
-    std::visit(
-        [&](auto& e) {
-          start(e);
-          step_loop(e);
-        },
-        *engine);
+    stage();
   } catch (const dem::NonFiniteState& fault) {  // found by the engine, which does not know the case
     std::string message = dem::with_cause(fault, derived);
     if (ranks) {  // every rank threw at the same rebuild: rank 0 reports the faulty rank's message
@@ -445,12 +352,39 @@ int DemRun::run() {
     errors.push_back(error.what());
     exit_status = 1;
   }
+}
+
+void DemRun::begin() {
+  if (begun) return;
+  begun = true;
+  catch_failures([&] { std::visit([&](auto& e) { start(e); }, *engine); });
+}
+
+bool DemRun::advance(long last) {
+  begin();
+  if (exit_status == 0)
+    catch_failures([&] { std::visit([&](auto& e) { step_loop(e, std::min(last, total_steps)); }, *engine); });
+  return exit_status != 0;
+}
+
+int DemRun::finish() {
+  if (done) return exit_status;
+  done = true;
+  begin();
   handle_failure_outside_loop();
   progress->finish();
   for (auto& o : observers) o->finish(sink);
   wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   std::visit([&](auto& e) { write_outputs(e); }, *engine);
   return exit_status;
+}
+
+int DemRun::run() {
+  advance(total_steps);
+  // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
+  if (exit_status == 0 && (interrupted != 0 || c.output.checkpoint_interval > 0.0))
+    catch_failures([&] { std::visit([&](auto& e) { checkpoint(e); }, *engine); });
+  return finish();
 }
 
 // The ranks' shares of the energy budget summed (collective), and the starting energy.
@@ -485,116 +419,52 @@ void DemRun::write_outputs(E& e) {
   if (!writes) return;                             // rank 0 writes the run's other files
   write_timeseries(dir + "/timeseries.csv", rows, c.servo.enabled);
   write_final_state(dir + "/final_state.csv", everyone, st.species);
-  write_summary(e, moving, global, migrations, ghosts);
+  write_summary(moving, global, migrations, ghosts);
 }
 
-template <class E>
-void DemRun::write_summary(E& e, long long moving, const observe::GlobalSample& global, long long migrations,
-                           long long ghosts) {
-  const auto& st = e.state();
-  double mean_temperature = 0.0;
-  long counted = 0;
-  for (const auto& r : rows)
-    if (r.time >= c.output.average_start) {
-      mean_temperature += r.global.granular_temperature;
-      ++counted;
-    }
-  summary.string("engine", "dem");
-  summary.integer("dimension", c.engine.dimension);
-  summary.integer("particles", moving);
-  summary.integer("fixed_particles", particle_count - moving);
-  summary.string("case", c.path);
-  summary.string("case_overrides", join_overrides(c.overrides));
-  summary.string("version", kVersion);
-  summary.string("contact_model", c.contact.model);
-  summary.number("simulated_time", st.time);
-  summary.number("wall_seconds", wall_seconds);
-  summary.integer("steps", st.step);
-  summary.number("time_step", st.time_step);
-  summary.integer("threads", options.threads);
-  summary.integer("mpi_ranks", comm.size());
-  if (e.domain()) {  // the decomposition, and how much crossed it
-    const auto& grid = e.domain()->grid();
-    summary.string("mpi_grid", std::to_string(grid.shape[0]) + "x" + std::to_string(grid.shape[1]) + "x" +
-                                   std::to_string(grid.shape[2]));
-    summary.integer("mpi_migrations", migrations);
-    summary.integer("mpi_ghosts", ghosts);
-    summary.integer("mpi_rebalances", e.domain()->rebalances());
-    summary.string("mpi_bounds", [&] {  // the final cuts along each cut axis
-      std::string text;
-      for (int a = 0; a < 3; ++a) {
-        if (!grid.cut(a)) continue;
-        text += std::string(text.empty() ? "" : "; ") + "xyz"[a] + ":";
-        for (double b : grid.bounds[a]) text += " " + std::to_string(b);
-      }
-      return text;
-    }());
+namespace {
+
+// A RunSession over a DemRun: advanced by whole steps.
+class DemSession final : public RunSessionOver<DemRun> {
+ public:
+  using RunSessionOver::RunSessionOver;
+  bool event_driven() const override { return false; }
+  long long steps() override { return std::visit([](auto& e) { return e.state().step; }, run_.engine_variant()); }
+  double time_step() const override {
+    return std::visit([](auto& e) { return e.state().time_step; }, const_cast<DemRun&>(run_).engine_variant());
   }
-  summary.number("particle_steps_per_second",
-                 wall_seconds > 0 ? moving * double(st.step - first_step) / wall_seconds : 0.0);
-  if (restart) summary.string("restarted_from", options.restart);
-  summary.number("max_overlap_over_diameter", max_overlap_seen);
-  clog.report(summary, warnings);
-  summary.number("kinetic_energy", global.kinetic_energy);
-  summary.number("rotational_energy", global.rotational_energy);
-  write_energy_budget(final_budget, final_budget_scale, summary);
-  summary.number("granular_temperature", counted ? mean_temperature / counted : global.granular_temperature);
-  // Lan's dimensionless groups (eqs. 4-1-2, 4-1-3) and Gamma, so sweeps can plot against them.
-  summary.integer("gravity_axis", axis);
-  summary.number("mass_holdup", derived.mass_holdup);
-  summary.number("boundary_fluctuation_velocity", derived.boundary_fluctuation_velocity);
-  summary.number("shaking_acceleration", derived.shaking_acceleration);
-  // Long-term means over the rows after output.average_start, with blocked standard errors.
-  const double from = c.output.average_start;
-  // Lan's cell-average temperature (eq. 3-1-2) is the free particles' about their mean velocity.
-  put(summary, "cell_temperature",
-      series_mean(rows, from, [](const TimeseriesRow& r) { return r.global.granular_temperature; }));
-  put(summary, "zone_temperature", series_mean(rows, from, [](const TimeseriesRow& r) { return r.zone_temperature; }));
-  // Lan's T_x, T_y, T_z of Table 4.6: each component's share of the cell-average temperature,
-  // <C_a^2> / 3, so that they add up to it (his T_x = T_z at Gamma = 5 and 20 are a third of <C_x^2>);
-  // in 2D <C_a^2> / 2 of x and y.
-  const int dim = c.engine.dimension;
-  for (int a = 0; a < dim; ++a)
-    put(summary, std::string("cell_temperature_") + "xyz"[a],
-        series_mean(rows, from, [a, dim](const TimeseriesRow& r) { return r.global.component_temperature[a] / dim; }));
-  if (floor_below && c.outlets.empty()) {  // a discharging silo's bulk fraction is its outlet's bed box's
-    put(summary, "bed_height", series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.height; }));
-    put(summary, "bulk_solids_fraction",
-        series_mean(rows, from, [](const TimeseriesRow& r) { return r.bed.bulk_solids_fraction; }));
+  long long last_step() const override { return run_.last_step(); }
+  void advance_steps(long long n) override {
+    refuse_when_finished();
+    refuse_negative(static_cast<double>(n), "steps");
+    const long long target = steps() + n;
+    refuse_beyond(target > last_step(), "step " + std::to_string(last_step()) + " (time " + std::to_string(end_time()) + ")",
+                  "step " + std::to_string(target));
+    advance_driver(static_cast<long>(target));
   }
-  // Collisions per particle: contacts begun within the averaging window, per moving particle.
-  const auto first =
-      std::find_if(rows.begin(), rows.end(), [&](const TimeseriesRow& r) { return r.time >= from - 1e-12; });
-  if (first != rows.end() && moving > 0 && rows.back().time > first->time) {
-    const double span = rows.back().time - first->time;
-    const double begun = 2.0 * static_cast<double>(rows.back().collisions - first->collisions);  // two partners each
-    summary.number("collisions_per_particle", begun / moving);
-    summary.number("collision_rate_per_particle", begun / moving / span);
-    summary.number("wall_collision_rate_per_particle",
-                   static_cast<double>(rows.back().wall_collisions - first->wall_collisions) / moving / span);
+  void advance_time(double dt) override {
+    refuse_negative(dt, "a time");
+    advance_steps(std::llround(dt / time_step()));
   }
-  if (c.particles.init == "random") {
-    // Radius expansion (section 2.2): how long it took, and the kinetic energy left when the radii
-    // reached full size (the first row from then), which growth must not have pumped up.
-    summary.number("expansion_time", derived.expansion_time);
-    const auto grown = std::find_if(rows.begin(), rows.end(), [&](const TimeseriesRow& r) {
-      return r.time >= derived.expansion_time * (1.0 - 1e-12);
-    });
-    if (grown != rows.end())
-      summary.number("expansion_end_kinetic_energy", grown->global.kinetic_energy + grown->global.rotational_energy);
+  void particles_written(bool positions) override {
+    if (steps() > 0 && positions)
+      throw InputError(case_.path, "", "positions are written before the first step only (the contacts remember them)");
+    written_ = written_ || steps() == 0;  // velocities later need nothing: the next kick starts from them
   }
-  summary.integer("neighbor_rebuilds", e.statistics().rebuilds);
-  if (c.servo.enabled) {
-    summary.integer("servo_updates", e.servo().updates());
-    summary.number("wall_gap", e.servo().state().gap);
-    summary.number("cell_width", e.servo().state().width);
-    put(summary, "mean_gap", series_mean(rows, from, [](const TimeseriesRow& r) { return r.servo.gap; }));
+
+ private:
+  void take_up_writes() override {
+    if (std::exchange(written_, false))
+      std::visit([](auto& e) { e.restart_from_current_state(); }, run_.engine_variant());
   }
-  exit_status = finish_summary(summary, dir, errors, warnings, exit_status, options.echo_errors);
-}
+};
 
 }  // namespace
 
 int run_dem(const CaseConfig& c, const RunOptions& options) { return DemRun(c, options).run(); }
+
+std::unique_ptr<RunSession> open_dem_session(const CaseConfig& c, const RunOptions& options) {
+  return std::make_unique<DemSession>(c, options);
+}
 
 }  // namespace grainflow::run

@@ -1,4 +1,5 @@
 #include "grainflow/run/edmd_run.hpp"
+#include "grainflow/run/run_session_over.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -49,7 +50,19 @@ constexpr double kNeverTime = std::numeric_limits<double>::infinity();
 class EdmdRun {
  public:
   EdmdRun(const CaseConfig& c, const RunOptions& options);
-  int run();
+  int run();  // `grainflow run`: start, advance to the case's end, write every output
+
+  // The same in pieces (a RunSession): start, advance to `until` (at most the case's end; stops
+  // early at an interrupt, a collision budget, or a failure, which advance reports (true) and
+  // finish() writes into summary.json), then the outputs.
+  void begin();
+  bool advance(double until);
+  int finish();
+  int take_interrupt() { return std::exchange(interrupted, 0); }
+  bool finished() const { return done; }
+  EdmdVariant& engine_variant() { return *engine; }
+  const std::string& output_directory() const { return dir; }
+  const std::string& first_error() const { return errors.front(); }
 
  private:
   template <class E>
@@ -63,7 +76,7 @@ class EdmdRun {
   template <class E>
   void start(E& e);
   template <class E>
-  void event_loop(E& e);
+  void event_loop(E& e, double until);
   template <class E>
   void bind_frame(E& e);
   template <class E>
@@ -116,6 +129,7 @@ class EdmdRun {
   long long segment_start_collisions = 0;
   std::size_t segment_first_row = 0;
   bool segment_converged = false;
+  bool begun = false, done = false, stopped = false;  // stopped: the collision budget or Campbell's check ended it
 };
 
 EdmdRun::EdmdRun(const CaseConfig& case_config, const RunOptions& run_options)
@@ -265,15 +279,15 @@ void EdmdRun::start(E& e) {
 }
 
 template <class E>
-void EdmdRun::event_loop(E& e) {
+void EdmdRun::event_loop(E& e, double until) {
   const double checkpoint_interval = c.output.checkpoint_interval;
   try {
-    while (e.state().time < end_time) {
+    while (e.state().time < until && !stopped) {
       // Between advances every particle is current: a checkpoint here continues exactly.
       if ((interrupted = pending_interrupt()) != 0) break;
       const double next_row = std::min(end_time, row * c.output.interval);
       const double next_shot = snapshots ? grid_time(shot, c.output.snapshot_interval, end_time) : kNeverTime;
-      double t = std::min({next_row, next_shot, next_sample_time()});
+      double t = std::min({next_row, next_shot, next_sample_time(), until});
       // A collision budget (the run's, or a Campbell segment's) ends at its last collision exactly,
       // with a row there.
       const bool budget_spent = e.advance_to(t, collision_budget());
@@ -293,17 +307,16 @@ void EdmdRun::event_loop(E& e) {
       record(e);
       progress->update(t);
       if (t >= end_time) break;
-      if (c.run.collisions > 0 && e.counters().collisions >= c.run.collisions) break;
-      if (c.run.protocol == "campbell" &&
-          e.counters().collisions - segment_start_collisions >= c.run.segment_collisions && end_segment(e))
+      if ((stopped = c.run.collisions > 0 && e.counters().collisions >= c.run.collisions)) break;
+      if ((stopped = c.run.protocol == "campbell" &&
+                     e.counters().collisions - segment_start_collisions >= c.run.segment_collisions &&
+                     end_segment(e)))
         break;
       if (checkpoint_interval > 0.0 && t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) {
         while (t >= checkpoints * checkpoint_interval * (1.0 - 1e-12)) ++checkpoints;
         checkpoint(e);
       }
     }
-    // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
-    if (interrupted != 0 || checkpoint_interval > 0.0) checkpoint(e);
   } catch (const RunError&) {
     e.synchronize(e.state().time);  // the outputs show every particle at one instant
     throw;
@@ -342,18 +355,33 @@ bool EdmdRun::end_segment(E& e) {
   return false;
 }
 
-int EdmdRun::run() {
+void EdmdRun::begin() {
+  if (begun) return;
+  begun = true;
   try {
-    std::visit(
-        [&](auto& e) {
-          start(e);
-          event_loop(e);
-        },
-        *engine);
+    std::visit([&](auto& e) { start(e); }, *engine);
   } catch (const RunError& error) {
     errors.push_back(error.what());
     exit_status = 1;
   }
+}
+
+bool EdmdRun::advance(double until) {
+  begin();
+  if (exit_status != 0) return true;
+  try {
+    std::visit([&](auto& e) { event_loop(e, std::min(until, end_time)); }, *engine);
+  } catch (const RunError& error) {
+    errors.push_back(error.what());
+    exit_status = 1;
+  }
+  return exit_status != 0;
+}
+
+int EdmdRun::finish() {
+  if (done) return exit_status;
+  done = true;
+  begin();
   if (interrupted != 0) {
     const double t = std::visit([](auto& e) { return e.state().time; }, *engine);
     errors.push_back(interrupted_message(interrupted, t, "", c, dir));
@@ -363,6 +391,20 @@ int EdmdRun::run() {
   wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   std::visit([&](auto& e) { write_outputs(e); }, *engine);
   return exit_status;
+}
+
+int EdmdRun::run() {
+  advance(end_time);
+  // The end, or an interruption: a checkpoint to continue from (the end's, to run longer).
+  if (exit_status == 0 && (interrupted != 0 || c.output.checkpoint_interval > 0.0)) {
+    try {
+      std::visit([&](auto& e) { checkpoint(e); }, *engine);
+    } catch (const RunError& error) {
+      errors.push_back(error.what());
+      exit_status = 1;
+    }
+  }
+  return finish();
 }
 
 void EdmdRun::write_timeseries() const {
@@ -476,8 +518,44 @@ void EdmdRun::write_outputs(E& e) {
   exit_status = finish_summary(summary, dir, errors, warnings, exit_status);
 }
 
+// A RunSession over an EdmdRun: advanced by simulated time.
+class EdmdSession final : public RunSessionOver<EdmdRun> {
+ public:
+  using RunSessionOver::RunSessionOver;
+  bool event_driven() const override { return true; }
+  long long steps() override {
+    return std::visit([](auto& e) { return e.counters().events; }, run_.engine_variant());
+  }
+  double time_step() const override { return 0.0; }
+  long long last_step() const override { return 0; }
+  void advance_steps(long long) override {
+    throw InputError(case_.path, "engine.kind", "the event-driven engine has no time step: advance it by a time");
+  }
+  void advance_time(double dt) override {
+    refuse_when_finished();
+    refuse_negative(dt, "a time");
+    const double target = time() + dt;
+    refuse_beyond(target > end_time() * (1.0 + 1e-12), "time " + std::to_string(end_time()),
+                  "time " + std::to_string(target));
+    advance_driver(std::min(target, end_time()));
+  }
+  void particles_written(bool positions) override {
+    if (positions) throw InputError(case_.path, "", "the event-driven engine's positions are read-only");
+    written_ = true;
+  }
+
+ private:
+  void take_up_writes() override {
+    if (std::exchange(written_, false)) std::visit([](auto& e) { e.take_velocities(); }, run_.engine_variant());
+  }
+};
+
 }  // namespace
 
 int run_edmd(const CaseConfig& c, const RunOptions& options) { return EdmdRun(c, options).run(); }
+
+std::unique_ptr<RunSession> open_edmd_session(const CaseConfig& c, const RunOptions& options) {
+  return std::make_unique<EdmdSession>(c, options);
+}
 
 }  // namespace grainflow::run

@@ -22,6 +22,19 @@ void catch_interrupts() {
 
 int pending_interrupt() { return pending; }
 
+InterruptScope::InterruptScope() {
+  sigaction(SIGINT, nullptr, &saved_int_);
+  sigaction(SIGTERM, nullptr, &saved_term_);
+  pending = 0;
+  catch_interrupts();
+}
+
+InterruptScope::~InterruptScope() {
+  sigaction(SIGINT, &saved_int_, nullptr);
+  sigaction(SIGTERM, &saved_term_, nullptr);
+  pending = 0;
+}
+
 const char* signal_name(int signal) { return signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "a signal"; }
 
 }  // namespace grainflow::run

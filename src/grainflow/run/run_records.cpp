@@ -16,8 +16,6 @@
 namespace grainflow::run {
 namespace {
 
-using wall_clock = std::chrono::system_clock;
-
 // ISO 8601 in UTC, to the second: comparable across machines and time zones.
 std::string utc_time(wall_clock::time_point t) {
   const std::time_t seconds = wall_clock::to_time_t(t);
@@ -27,6 +25,8 @@ std::string utc_time(wall_clock::time_point t) {
   std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &parts);
   return text;
 }
+
+}  // namespace
 
 void write_run_log(const std::string& dir, const CaseConfig& c, const RunOptions& options,
                    const std::vector<std::string>& command_line, wall_clock::time_point start,
@@ -48,8 +48,6 @@ void write_run_log(const std::string& dir, const CaseConfig& c, const RunOptions
   log.integer("exit_status", exit_status);
   io::write_atomically(dir + "/run_log.json", [&](std::ostream& out) { log.write(out); });
 }
-
-}  // namespace
 
 int run_with_records(const CaseConfig& c, const RunOptions& options, const std::vector<std::string>& command_line,
                      const std::function<int()>& run) {
