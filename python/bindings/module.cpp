@@ -151,6 +151,21 @@ PYBIND11_MODULE(_grainflow, m) {
       .def("finish", [](SessionCore& s) { return s.session().finish(); })
       .def("particles_written", [](SessionCore& s, bool positions) { s.session().particles_written(positions); })
       .def("particle_count", [](SessionCore& s) { return s.session().particles().size(); })
+      .def("add_particles",
+           [](SessionCore& s, const std::vector<int>& species, py::array_t<double, py::array::c_style | py::array::forcecast> x,
+              py::array_t<double, py::array::c_style | py::array::forcecast> v) {
+             const auto vectors = [](const py::array_t<double, py::array::c_style | py::array::forcecast>& a) {
+               if (a.ndim() != 2 || a.shape(1) != 3) throw py::value_error("positions and velocities are N x 3 arrays");
+               std::vector<Vec3> out(static_cast<std::size_t>(a.shape(0)));
+               for (std::size_t i = 0; i < out.size(); ++i) out[i] = Vec3{a.at(i, 0), a.at(i, 1), a.at(i, 2)};
+               return out;
+             };
+             const std::vector<Vec3> position = vectors(x), velocity = vectors(v);
+             if (velocity.size() != position.size() || species.size() != position.size())
+               throw py::value_error("as many species and velocities as positions");
+             return s.session().add_particles(species, position, velocity);
+           })
+      .def("remove_particles", [](SessionCore& s, const std::vector<std::uint32_t>& ids) { s.session().remove_particles(ids); })
       // Views of the engine's arrays (lifetime: until the next advance, which may re-sort them).
       .def("array",
            [](std::shared_ptr<SessionCore> s, const std::string& name, bool writable) -> py::array {

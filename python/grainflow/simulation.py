@@ -5,7 +5,12 @@ import tempfile
 
 from . import _grainflow
 from .case import Case
+from .errors import InputError
 from .outputs import load_run
+
+
+def grainflow_input_error(file, key, reason):
+    return InputError(f"{file}: key '{key}': {reason}", file, key, reason)
 
 
 class Particles:
@@ -171,6 +176,33 @@ class Simulation:
             for name in names:
                 new.array(name, True)[:] = old.array(name, False)
         self._core = new
+
+    # -- particles in and out ----------------------------------------------------------------
+    def add_particles(self, position, velocity=None, species=0):
+        """DEM: particles put in at ``position`` (N x 3, or one 3-vector) with ``velocity`` (same
+        shape, default at rest), of ``species`` (the case's species by name or index; one for all,
+        or one per particle), sized and weighed as that species. They must lie clear of every
+        particle and wall (``InputError`` naming the one that does not; nothing is added); they
+        join the run at the next step, whose energy budget counts them from then on. In 2D they
+        lie on the discs' plane. Returns their new ids (numpy uint32)."""
+        import numpy as np
+        x = np.atleast_2d(np.asarray(position, dtype=np.float64))
+        v = np.zeros_like(x) if velocity is None else np.atleast_2d(np.asarray(velocity, dtype=np.float64))
+        names = [s["name"] for s in self.case["species"]]
+        def index(s):
+            if isinstance(s, str):
+                if s not in names:
+                    raise grainflow_input_error(self.case.path, "species", f"no species '{s}' (the case has {names})")
+                return names.index(s)
+            return int(s)
+        kinds = [index(s) for s in species] if isinstance(species, (list, tuple, np.ndarray)) else [index(species)] * len(x)
+        return np.asarray(self._core.add_particles(kinds, x, v), dtype=np.uint32)
+
+    def remove_particles(self, ids):
+        """DEM: the particles with these ids taken out at the next step (their energy leaves the
+        budget's starting value; ids not present are ignored)."""
+        import numpy as np
+        self._core.remove_particles([int(i) for i in np.atleast_1d(ids)])
 
     def finish(self):
         """Writes every output now (the run ends here); returns the exit status."""

@@ -134,6 +134,13 @@ class DemEngine {
   std::vector<Removed> take_removed() { return std::exchange(removed_, {}); }  // empty until the next exchange
   // Particles made by an insertion or back from an outlet, still waiting for room.
   std::size_t waiting_count() const { return waiting_.size(); }
+  // Particles added and removed from outside between steps (the Python module): applied at the
+  // next step's list rebuild, which they force, the energy budget following each in or out as for
+  // [[insertion]] and [[outlet]]. An added particle must lie clear of every particle and wall
+  // (std::invalid_argument otherwise, nothing added); it gets a new id, returned. Ids not present
+  // are ignored. One MPI rank only.
+  std::vector<std::uint32_t> add_particles(std::vector<ParticleStore::Record> particles);
+  void remove_particles(const std::vector<std::uint32_t>& ids);
   // The MPI side of the engine, or null on one rank.
   const DomainExchange<State>* domain() const { return domain_.get(); }
   // MPI: the ghosts take their owners' state at the step's end (the step refreshes them after the
@@ -474,6 +481,10 @@ class DemEngine {
   std::uint64_t draws_ = 0;        // the insertions' random stream (splitmix64's counter)
   std::uint32_t next_id_ = 0;      // no particle of the run has had it
   long last_exchange_ = -kExchangeSteps;
+  std::vector<ParticleStore::Record> requested_in_;  // add_particles, until the next rebuild
+  std::vector<std::uint32_t> requested_out_;         // remove_particles: ids
+  void count_in(std::size_t i);   // the budget's starting values take particle i's energy on ...
+  void count_out(std::size_t i);  // ... or off, at the step the budget counts it
   long due(std::size_t insertion) const;
   bool exchange_due() const;
   void exchange_particles();

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -23,6 +25,7 @@ long DemEngine<Law, Rolling>::due(std::size_t k) const {
 
 template <class Law, bool Rolling>
 bool DemEngine<Law, Rolling>::exchange_due() const {
+  if (!requested_in_.empty() || !requested_out_.empty()) return true;
   if (s_.insertions.empty() || s_.step - last_exchange_ < kExchangeSteps) return false;
   if (!waiting_.empty()) return true;
   for (std::size_t k = 0; k < s_.insertions.size(); ++k)
@@ -50,7 +53,8 @@ void DemEngine<Law, Rolling>::exchange_particles() {
   ParticleStore& p = s_.particles;
   last_exchange_ = s_.step;
   removed_.clear();
-  if (!s_.outlets.empty()) {
+  if (!s_.outlets.empty() || !requested_out_.empty()) {
+    std::sort(requested_out_.begin(), requested_out_.end());
     std::vector<std::uint32_t> keep;
     keep.reserve(p.size());
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -58,18 +62,13 @@ void DemEngine<Law, Rolling>::exchange_particles() {
       if (p.counted(i))
         for (std::size_t o = 0; o < s_.outlets.size() && outlet < 0; ++o)
           if (s_.outlets[o].holds(p.position[i])) outlet = static_cast<int>(o);
-      if (outlet < 0) {
+      const bool requested = std::binary_search(requested_out_.begin(), requested_out_.end(), p.id[i]);
+      if (outlet < 0 && !requested) {
         keep.push_back(static_cast<std::uint32_t>(i));
         continue;
       }
-      // Its energy at the last full step, which the budget counted (the step is half done here).
-      const double h = 0.5 * s_.time_step;
-      const Vec3 v = p.velocity[i] - (h * p.inv_mass[i]) * p.force[i];
-      const Vec3 w = p.angular_velocity[i] - (h * p.inv_inertia[i]) * p.torque[i];
-      const Vec3 x = s_.box.unwrapped(p.position[i], p.image[i]) - s_.time_step * p.velocity[i];
-      energy_.start_energy -= 0.5 * p.mass[i] * norm2(v) + 0.5 * norm2(w) / p.inv_inertia[i] +
-                              engine_api::bounded_potential(s_.box, s_.gravity, p.mass[i], x);
-      energy_.start_periodic_potential -= periodic_potential_of(p.mass[i], x);
+      if (p.moves(i)) count_out(i);
+      if (outlet < 0) continue;
       ++outlet_counts_[outlet].removed;
       outlet_counts_[outlet].mass += p.mass[i];
       removed_.push_back({outlet, p.record(i)});
@@ -81,7 +80,14 @@ void DemEngine<Law, Rolling>::exchange_particles() {
       }
     }
     if (keep.size() != p.size()) p.permute(keep);
+    requested_out_.clear();
   }
+  for (const ParticleStore::Record& r : requested_in_) {
+    p.push_back(r);
+    s_.box.wrap(p.position.back(), p.image.back(), &p.velocity.back());
+    count_in(p.size() - 1);
+  }
+  requested_in_.clear();
   for (std::size_t k = 0; k < s_.insertions.size(); ++k) {
     const InsertionRegion& in = s_.insertions[k];
     for (long n = due(k) - made_[k]; n > 0; --n) {
@@ -160,17 +166,74 @@ void DemEngine<Law, Rolling>::place_waiting() {
       const std::size_t i = p.size() - 1;
       s_.box.wrap(p.position[i], p.image[i], &p.velocity[i]);
       near[key(p.position[i])].push_back(static_cast<std::uint32_t>(i));
-      // Its energy at the end of this step, the first the budget counts: clear of every contact,
-      // only gravity acts in the step's second half kick.
-      const Vec3 v = p.velocity[i] + (0.5 * s_.time_step) * s_.gravity;
-      energy_.start_energy += 0.5 * p.mass[i] * norm2(v) + 0.5 * norm2(p.angular_velocity[i]) / p.inv_inertia[i] +
-                              engine_api::bounded_potential(s_.box, s_.gravity, p.mass[i], p.position[i]);
-      energy_.start_periodic_potential += periodic_potential_of(p.mass[i], s_.box.unwrapped(p.position[i], p.image[i]));
+      count_in(i);
       placed = true;
     }
     if (!placed) still.push_back(w);
   }
   waiting_.swap(still);
+}
+
+// A particle put in mid-step (at a rebuild): its energy at the end of this step, the first the
+// budget counts; clear of every contact, only gravity acts in the step's second half kick.
+template <class Law, bool Rolling>
+void DemEngine<Law, Rolling>::count_in(std::size_t i) {
+  const ParticleStore& p = s_.particles;
+  const Vec3 v = p.velocity[i] + (0.5 * s_.time_step) * s_.gravity;
+  energy_.start_energy += 0.5 * p.mass[i] * norm2(v) + 0.5 * norm2(p.angular_velocity[i]) / p.inv_inertia[i] +
+                          engine_api::bounded_potential(s_.box, s_.gravity, p.mass[i], p.position[i]);
+  energy_.start_periodic_potential += periodic_potential_of(p.mass[i], s_.box.unwrapped(p.position[i], p.image[i]));
+}
+
+// A particle taken out mid-step: its energy at the last full step, which the budget counted.
+template <class Law, bool Rolling>
+void DemEngine<Law, Rolling>::count_out(std::size_t i) {
+  const ParticleStore& p = s_.particles;
+  const double h = 0.5 * s_.time_step;
+  const Vec3 v = p.velocity[i] - (h * p.inv_mass[i]) * p.force[i];
+  const Vec3 w = p.angular_velocity[i] - (h * p.inv_inertia[i]) * p.torque[i];
+  const Vec3 x = s_.box.unwrapped(p.position[i], p.image[i]) - s_.time_step * p.velocity[i];
+  energy_.start_energy -= 0.5 * p.mass[i] * norm2(v) + 0.5 * norm2(w) / p.inv_inertia[i] +
+                          engine_api::bounded_potential(s_.box, s_.gravity, p.mass[i], x);
+  energy_.start_periodic_potential -= periodic_potential_of(p.mass[i], x);
+}
+
+template <class Law, bool Rolling>
+std::vector<std::uint32_t> DemEngine<Law, Rolling>::add_particles(std::vector<ParticleStore::Record> particles) {
+  if (domain_) throw std::invalid_argument("particles are added on one MPI rank only");
+  const ParticleStore& p = s_.particles;
+  const auto clash = [&](const Vec3& x, double r, const Vec3& y, double ry) {
+    return norm(s_.box.minimum_image(x, y)) < r + ry;
+  };
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const ParticleStore::Record& r = particles[k];
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (clash(r.position, r.target_radius, p.position[i], p.target_radius[i]))
+        throw std::invalid_argument("the new particle " + std::to_string(k) + " would overlap particle id " +
+                                    std::to_string(p.id[i]));
+    for (std::size_t j = 0; j < k; ++j)
+      if (clash(r.position, r.target_radius, particles[j].position, particles[j].target_radius))
+        throw std::invalid_argument("the new particles " + std::to_string(j) + " and " + std::to_string(k) + " overlap");
+    for (const ParticleStore::Record& q : requested_in_)
+      if (clash(r.position, r.target_radius, q.position, q.target_radius))
+        throw std::invalid_argument("the new particle " + std::to_string(k) + " would overlap one added before");
+    for (const DemWall& wall : s_.walls)
+      if (walls::nearest_gap(wall.shape, r.position, r.target_radius) < r.target_radius)
+        throw std::invalid_argument("the new particle " + std::to_string(k) + " would touch the wall '" + wall.name + "'");
+  }
+  std::vector<std::uint32_t> ids;
+  for (ParticleStore::Record& r : particles) {
+    r.id = next_id_++;
+    ids.push_back(r.id);
+    requested_in_.push_back(r);
+  }
+  return ids;
+}
+
+template <class Law, bool Rolling>
+void DemEngine<Law, Rolling>::remove_particles(const std::vector<std::uint32_t>& ids) {
+  if (domain_) throw std::invalid_argument("particles are removed on one MPI rank only");
+  requested_out_.insert(requested_out_.end(), ids.begin(), ids.end());
 }
 
 }  // namespace grainflow::dem

@@ -347,7 +347,8 @@ void DemEngine<Law, Rolling>::rebuild(bool first) {
   if (!first) {
     kept = contacts_.take_touching(pairs_, p.id, p.image, s_.box.shear_turns);
     kept_walls = contacts_.take_wall_touching(p.id);
-    if (s_.exchanges) exchange_particles();  // the kept states name particles by id: they follow
+    if (s_.exchanges || !requested_in_.empty() || !requested_out_.empty())
+      exchange_particles();  // the kept states name particles by id: they follow
   }
   if (s_.box.sheared()) {
     // The offset back within one width (the turns go into the images' keys), and particles that

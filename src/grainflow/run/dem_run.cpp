@@ -22,6 +22,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "grainflow/core/ball_measure.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
 #include "grainflow/dem/engine_factory.hpp"
@@ -450,6 +451,42 @@ class DemSession final : public RunSessionOver<DemRun> {
     if (steps() > 0 && positions)
       throw InputError(case_.path, "", "positions are written before the first step only (the contacts remember them)");
     written_ = written_ || steps() == 0;  // velocities later need nothing: the next kick starts from them
+  }
+  std::vector<std::uint32_t> add_particles(const std::vector<int>& species, const std::vector<Vec3>& position,
+                                           const std::vector<Vec3>& velocity) override {
+    std::vector<ParticleStore::Record> records;
+    for (std::size_t k = 0; k < position.size(); ++k) {
+      const int s = species[k];
+      if (s < 0 || s >= static_cast<int>(case_.species.size()))
+        throw InputError(case_.path, "species", "the new particle " + std::to_string(k) + " names species " +
+                                                    std::to_string(s) + ": the case has " +
+                                                    std::to_string(case_.species.size()));
+      if (case_.species[s].frozen)
+        throw InputError(case_.path, "species", "'" + case_.species[s].name + "' is frozen: the case places those");
+      ParticleStore::Record r{};
+      r.position = position[k];
+      r.velocity = velocity[k];
+      if (dimension() == 2) r.position.z = 0.5 * (case_.domain.lo.z + case_.domain.hi.z), r.velocity.z = 0.0;
+      r.radius = r.target_radius = 0.5 * case_.species[s].diameter;
+      r.mass = ball_measure(dimension(), r.radius) * case_.species[s].density;
+      r.inv_mass = 1.0 / r.mass;
+      r.inv_inertia = 1.0 / (ball_inertia_factor(dimension()) * r.mass * r.radius * r.radius);
+      r.species = s;
+      r.motion = Motion::free;
+      r.wall = -1;
+      for (int a = 0; a < dimension(); ++a)
+        if (!(r.position[a] >= case_.domain.lo[a] && r.position[a] <= case_.domain.hi[a]))
+          throw InputError(case_.path, "domain", "the new particle " + std::to_string(k) + " lies outside the box");
+      records.push_back(r);
+    }
+    try {
+      return std::visit([&](auto& e) { return e.add_particles(records); }, run_.engine_variant());
+    } catch (const std::invalid_argument& refused) {
+      throw InputError(case_.path, "", refused.what());
+    }
+  }
+  void remove_particles(const std::vector<std::uint32_t>& ids) override {
+    std::visit([&](auto& e) { e.remove_particles(ids); }, run_.engine_variant());
   }
 
  private:

@@ -543,6 +543,13 @@ class EdmdSession final : public RunSessionOver<EdmdRun> {
     if (positions) throw InputError(case_.path, "", "the event-driven engine's positions are read-only");
     written_ = true;
   }
+  std::vector<std::uint32_t> add_particles(const std::vector<int>&, const std::vector<Vec3>&,
+                                           const std::vector<Vec3>&) override {
+    throw InputError(case_.path, "engine.kind", "the event-driven engine's particles are the case's: none are added");
+  }
+  void remove_particles(const std::vector<std::uint32_t>&) override {
+    throw InputError(case_.path, "engine.kind", "the event-driven engine's particles are the case's: none are removed");
+  }
 
  private:
   void take_up_writes() override {

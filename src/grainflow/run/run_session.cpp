@@ -52,6 +52,11 @@ class RecordedSession final : public RunSession {
   bool finished() const override { return engine_->finished(); }
   ParticleStore& particles() override { return engine_->particles(); }
   void particles_written(bool positions) override { engine_->particles_written(positions); }
+  std::vector<std::uint32_t> add_particles(const std::vector<int>& species, const std::vector<Vec3>& position,
+                                           const std::vector<Vec3>& velocity) override {
+    return engine_->add_particles(species, position, velocity);
+  }
+  void remove_particles(const std::vector<std::uint32_t>& ids) override { engine_->remove_particles(ids); }
   const std::string& output_directory() const override { return engine_->output_directory(); }
 
  private:

@@ -47,6 +47,14 @@ class RunSession {
   // particles(): the engine takes them up before it goes on (DEM: lists and forces at the new
   // positions; event-driven: every flight and event predicted anew).
   virtual void particles_written(bool positions) = 0;
+  // DEM, between advances: particles of case species `species` (index) put in at `position` with
+  // `velocity`, clear of every particle and wall (InputError naming the new particle otherwise;
+  // in 2D on the discs' plane), taken into the run at the next step; their new ids. And particles
+  // taken out by id at the next step (ids not present are ignored). The event-driven engine
+  // refuses both (InputError).
+  virtual std::vector<std::uint32_t> add_particles(const std::vector<int>& species, const std::vector<Vec3>& position,
+                                                   const std::vector<Vec3>& velocity) = 0;
+  virtual void remove_particles(const std::vector<std::uint32_t>& ids) = 0;
   virtual const std::string& output_directory() const = 0;
 };
 
