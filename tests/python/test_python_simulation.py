@@ -185,3 +185,31 @@ def test_outputs_in_memory_are_the_files(tmp_path, grainflow_bin):
     np.testing.assert_array_equal(loaded["final_state"]["x"], out.final_state["x"])
     with pytest.raises(grainflow.RunError):
         sim.step(1)                                  # finished: its outputs are written
+
+
+def test_the_gil_is_released_while_the_engine_runs():
+    # A Python thread notes the time as it counts while the main thread is inside step(): had the
+    # engine held the GIL, none of its notes could fall inside the call, away from its two ends.
+    import time
+    sim = grainflow.Simulation(grainflow.Case.from_string(gas_case("dem", 3, duration=1000.0)))
+    stamps, running = [], [True]
+
+    def count():
+        n = 0
+        while running[0]:
+            n += 1
+            if n % 1000 == 0:
+                stamps.append(time.perf_counter())
+
+    worker = threading.Thread(target=count)
+    worker.start()
+    try:
+        start = time.perf_counter()
+        sim.step(100000)
+        end = time.perf_counter()
+    finally:
+        running[0] = False
+        worker.join()
+    margin = 0.1 * (end - start)
+    inside = [t for t in stamps if start + margin < t < end - margin]
+    assert len(inside) > 10, (end - start, len(stamps))
