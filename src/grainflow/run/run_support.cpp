@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <numeric>
 
 #include "grainflow/io/atomic_file.hpp"
 
@@ -54,8 +55,10 @@ void write_final_state(const std::string& path, const ParticleStore& p, const st
     out.precision(17);  // exact doubles: the state can be read back
     out << "# units: diameter m, x y z m, vx vy vz m/s, wx wy wz rad/s\n";
     out << "id,species,diameter,x,y,z,vx,vy,vz,wx,wy,wz\n";
+    // In id order; ids need not run 0 .. N - 1 (outlets take particles out, insertions add ids).
     std::vector<std::size_t> by_id(p.size());
-    for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = i;
+    std::iota(by_id.begin(), by_id.end(), std::size_t{0});
+    std::sort(by_id.begin(), by_id.end(), [&](std::size_t a, std::size_t b) { return p.id[a] < p.id[b]; });
     for (std::size_t i : by_id) {
       const Vec3 &x = p.position[i], &v = p.velocity[i], &w = p.angular_velocity[i];
       out << p.id[i] << ',' << species[p.species[i]].name << ',' << 2.0 * p.target_radius[i] << ',' << x.x << ',' << x.y
