@@ -1,5 +1,6 @@
 """Runs driven from Python: advanced in pieces, inspected and changed between them."""
 import os
+import shutil
 import sys
 import tempfile
 
@@ -158,17 +159,22 @@ class Simulation:
     def run(self, output=None):
         """On to the case's end and every output written, as ``grainflow run -o output`` does;
         returns the exit status (0; 1 after a failure, whose message is in the summary's
-        ``errors``). ``output`` may name a new folder only while nothing has run."""
+        ``errors``). With ``output`` another folder than the simulation's: before anything ran,
+        the run goes there; after, it ends in its own folder and the whole folder is copied there."""
+        copy_to = None
         if output is not None and os.path.abspath(output) != os.path.abspath(self.output):
-            self._move(os.fspath(output))
+            if self._begun:
+                copy_to = os.fspath(output)  # the run's folder is fixed once it began: copied at the end
+            else:
+                self._move(os.fspath(output))
         self._before_advance()
         status = self._core.run()
         self._outputs = None
+        if copy_to is not None:
+            shutil.copytree(self.output, copy_to, dirs_exist_ok=True)
         return status
 
     def _move(self, output):
-        if self._begun or self._core.finished:
-            raise ValueError(f"this simulation already writes into {self.output}: give output= when creating it")
         old = self._core
         new = self._open(output)
         if self._written:  # what was written into the arrays goes with them
