@@ -30,7 +30,7 @@ demo: deps
 # Release build: every test. Debug build (AddressSanitizer + UBSan): the unit tests, built alone,
 # except the long physics runs below (most of the sanitizer pass's time), which repeat for many
 # steps code that shorter unit tests run under the sanitizers too; the release build runs them all.
-SANITIZER_LONG_RUNS = NeighborList.EveryOverlappingPairIsListedAtEveryStep|MeshWalls.ABedInAFacetedCylinderApproachesTheAnalyticCylinder|ElasticGas.EnergyErrorShrinksAsTimeStepSquared|EdmdCouetteServo.SymmetricServoGivesEqualTemperaturesAtTheTwoWalls|EdmdChute.TwentyDegreesRuns1e7EventsWithoutStalling|KineticTheorySolver.GlassBedsOfTable43|KineticTheorySolver.StrongerDriveExpandsTheBed|KineticTheorySolver.DenseBedStaysBelowClosePacking|EdmdEquationOfState.HardSpheresMatchCarnahanStarling|EdmdEnergyBudget.ClosesWithCampbellsReseparation
+SANITIZER_LONG_RUNS = NeighborList.EveryOverlappingPairIsListedAtEveryStep|GeometryWalls.SphereInATurningDrumSettlesWhereFrictionBalancesGravity|MeshWalls.ABedInAFacetedCylinderApproachesTheAnalyticCylinder|ElasticGas.EnergyErrorShrinksAsTimeStepSquared|EdmdCouetteServo.SymmetricServoGivesEqualTemperaturesAtTheTwoWalls|EdmdChute.TwentyDegreesRuns1e7EventsWithoutStalling|KineticTheorySolver.GlassBedsOfTable43|KineticTheorySolver.StrongerDriveExpandsTheBed|KineticTheorySolver.DenseBedStaysBelowClosePacking|EdmdEquationOfState.HardSpheresMatchCarnahanStarling|EdmdEnergyBudget.ClosesWithCampbellsReseparation
 test: release
 	cmake --preset debug
 	cmake --build --preset debug -j $(JOBS) --target unit_tests
