@@ -31,9 +31,13 @@ def test_notebook_executes(tmp_path):
     if shutil.which("jupyter") is None:
         pytest.skip("jupyter-nbconvert is not installed (tools/install_deps.sh installs it)")
     shutil.copy(os.path.join(EXAMPLES, "chute_friction.ipynb"), tmp_path)
+    env = environment()
+    # The kernel's connection files and caches in the test's folder: HOME may not be writable.
+    for name, folder in (("JUPYTER_RUNTIME_DIR", "runtime"), ("IPYTHONDIR", "ipython"), ("MPLCONFIGDIR", "mpl")):
+        env[name] = str(tmp_path / folder)
     subprocess.run(["jupyter", "nbconvert", "--to", "notebook", "--execute", "chute_friction.ipynb",
                     "--output", "executed.ipynb", "--ExecutePreprocessor.timeout=600"],
-                   cwd=tmp_path, env=environment(), check=True, capture_output=True, text=True)
+                   cwd=tmp_path, env=env, check=True, capture_output=True, text=True)
     assert (tmp_path / "chute_profile.png").stat().st_size > 0
     import nbformat
     notebook = nbformat.read(str(tmp_path / "executed.ipynb"), as_version=4)
