@@ -45,10 +45,12 @@ class Particles:
             writable = not core.event_driven
         elif name == "position":
             writable = not core.event_driven and core.steps == 0 and not sim._begun
-        if writable:
-            sim._written = True
-            sim._positions_written = sim._positions_written or name == "position"
-        return core.array(name, writable)
+        view = core.array(name, writable)
+        if writable and name not in sim._handed_out:
+            # What it holds now, to tell at the next advance whether it was written: the engine then
+            # takes the new values up (an untouched view must leave the run as it was).
+            sim._handed_out[name] = (view, view.copy())
+        return view
 
     def __getattr__(self, name):
         if name in self._VECTORS or name in self._SCALARS:
@@ -84,8 +86,7 @@ class Simulation:
             output = os.path.join(self._temporary.name, "run")
         self._core = self._open(os.fspath(output))
         self._begun = False
-        self._written = False
-        self._positions_written = False
+        self._handed_out = {}  # writable views since the last advance: {name: (view, values then)}
         self._outputs = None
 
     def _open(self, output):
@@ -138,10 +139,17 @@ class Simulation:
 
     # -- advancing ---------------------------------------------------------------------------
     def _before_advance(self):
-        if self._written:
-            self._core.particles_written(self._positions_written)
-            self._written = self._positions_written = False
+        written = self._written_arrays()
+        if written:
+            self._core.particles_written("position" in written)
         self._begun = True
+
+    def _written_arrays(self):
+        """The names of the writable views handed out since the last advance whose values changed."""
+        import numpy as np
+        written = [name for name, (view, before) in self._handed_out.items() if not np.array_equal(view, before)]
+        self._handed_out = {}
+        return written
 
     def step(self, n=1):
         """DEM: ``n`` time steps."""
@@ -177,10 +185,11 @@ class Simulation:
     def _move(self, output):
         old = self._core
         new = self._open(output)
-        if self._written:  # what was written into the arrays goes with them
-            names = ("velocity",) if new.event_driven else ("position", "velocity", "angular_velocity")
-            for name in names:
-                new.array(name, True)[:] = old.array(name, False)
+        written = self._written_arrays()
+        for name in written:  # what was written into the arrays goes with them
+            new.array(name, True)[:] = old.array(name, False)
+        if written:
+            new.particles_written("position" in written)
         self._core = new
 
     # -- particles in and out ----------------------------------------------------------------
