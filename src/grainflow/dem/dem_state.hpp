@@ -109,4 +109,9 @@ struct DemState {
 
 DemState build_dem_state(const CaseConfig& c);
 
+// A free particle of the case's species `species` at `position` with `velocity`, sized and weighed
+// as the species (in 2D on the discs' plane, moving in it): what an insertion or the Python module
+// puts in. Its id is the engine's to give.
+ParticleStore::Record species_particle(const CaseConfig& c, int species, const Vec3& position, const Vec3& velocity);
+
 }  // namespace grainflow::dem

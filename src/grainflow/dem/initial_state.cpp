@@ -342,10 +342,10 @@ DemState build_dem_state(const CaseConfig& c) {
     InsertionRegion r;
     for (std::size_t k = 0; k < c.species.size(); ++k)
       if (c.species[k].name == in.species) r.species = static_cast<int>(k);
-    const SpeciesConfig& species = c.species[r.species];
-    r.radius = 0.5 * species.diameter;
-    r.mass = ball_measure(s.dimension, r.radius) * species.density;
-    r.inv_inertia = 1.0 / (ball_inertia_factor(s.dimension) * r.mass * r.radius * r.radius);
+    const ParticleStore::Record sized = species_particle(c, r.species, Vec3{}, Vec3{});
+    r.radius = sized.radius;
+    r.mass = sized.mass;
+    r.inv_inertia = sized.inv_inertia;
     r.count = in.count;
     r.rate = in.rate;
     r.lo = in.region_lo;
@@ -371,6 +371,22 @@ DemState build_dem_state(const CaseConfig& c) {
   s.exchanges = !c.outlets.empty() || !c.insertions.empty();
   validate_flows(c, s);
   return s;
+}
+
+ParticleStore::Record species_particle(const CaseConfig& c, int species, const Vec3& position, const Vec3& velocity) {
+  ParticleStore::Record r{};
+  const int dimension = c.engine.dimension;
+  r.position = position;
+  r.velocity = velocity;
+  if (dimension == 2) r.position.z = disc_plane(c), r.velocity.z = 0.0;
+  r.radius = r.target_radius = 0.5 * c.species[species].diameter;
+  r.mass = ball_measure(dimension, r.radius) * c.species[species].density;
+  r.inv_mass = 1.0 / r.mass;
+  r.inv_inertia = 1.0 / (ball_inertia_factor(dimension) * r.mass * r.radius * r.radius);
+  r.species = species;
+  r.motion = Motion::free;
+  r.wall = -1;
+  return r;
 }
 
 }  // namespace grainflow::dem

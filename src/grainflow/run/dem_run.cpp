@@ -22,7 +22,6 @@
 #include <sstream>
 #include <unistd.h>
 
-#include "grainflow/core/ball_measure.hpp"
 #include "grainflow/core/error.hpp"
 #include "grainflow/core/version.hpp"
 #include "grainflow/dem/engine_factory.hpp"
@@ -431,9 +430,7 @@ class DemSession final : public RunSessionOver<DemRun> {
   using RunSessionOver::RunSessionOver;
   bool event_driven() const override { return false; }
   long long steps() override { return std::visit([](auto& e) { return e.state().step; }, run_.engine_variant()); }
-  double time_step() const override {
-    return std::visit([](auto& e) { return e.state().time_step; }, const_cast<DemRun&>(run_).engine_variant());
-  }
+  double time_step() const override { return run_.time_step(); }
   long long last_step() const override { return run_.last_step(); }
   void advance_steps(long long n) override {
     refuse_when_finished();
@@ -463,17 +460,7 @@ class DemSession final : public RunSessionOver<DemRun> {
                                                     std::to_string(case_.species.size()));
       if (case_.species[s].frozen)
         throw InputError(case_.path, "species", "'" + case_.species[s].name + "' is frozen: the case places those");
-      ParticleStore::Record r{};
-      r.position = position[k];
-      r.velocity = velocity[k];
-      if (dimension() == 2) r.position.z = 0.5 * (case_.domain.lo.z + case_.domain.hi.z), r.velocity.z = 0.0;
-      r.radius = r.target_radius = 0.5 * case_.species[s].diameter;
-      r.mass = ball_measure(dimension(), r.radius) * case_.species[s].density;
-      r.inv_mass = 1.0 / r.mass;
-      r.inv_inertia = 1.0 / (ball_inertia_factor(dimension()) * r.mass * r.radius * r.radius);
-      r.species = s;
-      r.motion = Motion::free;
-      r.wall = -1;
+      const ParticleStore::Record r = dem::species_particle(case_, s, position[k], velocity[k]);
       for (int a = 0; a < dimension(); ++a)
         if (!(r.position[a] >= case_.domain.lo[a] && r.position[a] <= case_.domain.hi[a]))
           throw InputError(case_.path, "domain", "the new particle " + std::to_string(k) + " lies outside the box");

@@ -50,6 +50,7 @@ class DemRun {
   int take_interrupt() { return std::exchange(interrupted, 0); }
   bool finished() const { return done; }
   long last_step() const { return total_steps; }
+  double time_step() const { return dt; }
   dem::DemEngineVariant& engine_variant() { return *engine; }
   const std::string& output_directory() const { return dir; }
   const std::string& first_error() const { return errors.front(); }
